@@ -1,0 +1,114 @@
+// Surface: the deforming surface S(t) the mesh follows, a black box the adapter can only
+// sample (de Goes et al. 2006, Section 3). Two kinds share this interface:
+//   - ParametricSurface: S(u, v, t) over a rectangular parameter domain; a mesh vertex
+//     carries its (u, v), so bringing it onto the surface is evaluation;
+//   - ImplicitSurface: {p : F(p, t) = 0}, F < 0 inside; bringing a point onto the surface
+//     is Newton projection along the gradient (core/surface/projection.h).
+//
+// Contract: set_time() and set_parameter() are called between phases, from one thread;
+// every const evaluation method is thread-safe and allocation-free, so millions of samples
+// can be evaluated in parallel.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry/vector_types.h"
+#include "core/mesh/mesh48.h"
+
+namespace dynamesh {
+
+// A named, adjustable scalar of a scene (SCENES.md), with its range and a one-line meaning.
+struct SurfaceParameter {
+  std::string name;
+  double value = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  std::string description;
+};
+
+// Principal curvatures k1 >= k2 (signed, positive where the surface bends towards its
+// normal's opposite side, i.e. a sphere with outward normal has k = +1/R) and their unit
+// directions, with the unit normal; all at one point.
+struct PrincipalCurvatures {
+  double k1 = 0.0, k2 = 0.0;
+  Vec3 dir1{Vec3::UnitX()}, dir2{Vec3::UnitY()};
+  Vec3 normal{Vec3::UnitZ()};
+};
+
+enum class SurfaceKind { kParametric, kImplicit };
+
+class Surface {
+ public:
+  virtual ~Surface() = default;
+
+  virtual SurfaceKind kind() const = 0;
+  virtual std::string name() const = 0;
+
+  // Animation time, normalised to [0, 1] for the built-in scenes. Cheap to change.
+  double time() const { return time_; }
+  virtual void set_time(double t) { time_ = t; }
+
+  // Adjustable parameters with current values; set_parameter throws std::invalid_argument
+  // for an unknown name or a value outside [min, max].
+  virtual std::vector<SurfaceParameter> parameters() const { return {}; }
+  virtual void set_parameter(const std::string& name, double value);
+
+  // Bounding box of the surface at the current time (may be conservative).
+  virtual Box3 bounds() const = 0;
+  // Characteristic length of the scene (finite-difference steps, tolerances): by default
+  // the diagonal of bounds().
+  virtual double length_scale() const { return bounds().diagonal(); }
+
+  // A coarse 4-8 base mesh with the surface's topology, its vertices on the surface at the
+  // current time (parametric: with their (u, v) set).
+  virtual Mesh48 base_mesh() const = 0;
+
+ private:
+  double time_ = 0.0;
+};
+
+// Value and derivatives of S(u, v) at one parameter point.
+struct ParametricDerivatives {
+  Vec3 s, su, sv, suu, suv, svv;
+};
+
+// Rectangular parameter domain [min, max]; a periodic direction wraps.
+struct ParameterDomain {
+  Vec2 min{Vec2::Zero()}, max{Vec2::Ones()};
+  bool periodic_u = false, periodic_v = false;
+};
+
+class ParametricSurface : public Surface {
+ public:
+  SurfaceKind kind() const final { return SurfaceKind::kParametric; }
+
+  virtual ParameterDomain domain() const = 0;
+  virtual Vec3 position(const Vec2& uv) const = 0;
+  // Analytic where a closed form exists; by default central differences with a step taken
+  // from the domain's size.
+  virtual ParametricDerivatives derivatives(const Vec2& uv) const;
+  // Unit normal Su x Sv / |Su x Sv|.
+  Vec3 normal(const Vec2& uv) const;
+  // From the first and second fundamental forms.
+  PrincipalCurvatures curvatures(const Vec2& uv) const;
+};
+
+class ImplicitSurface : public Surface {
+ public:
+  SurfaceKind kind() const final { return SurfaceKind::kImplicit; }
+
+  virtual double value(const Vec3& p) const = 0;
+  // F and grad F together (cheaper for most scenes); by default central differences.
+  virtual double value_gradient(const Vec3& p, Vec3& gradient) const;
+  // By default central differences of value_gradient().
+  virtual Mat3 hessian(const Vec3& p) const;
+  // Finite-difference step used by the defaults above; from length_scale().
+  virtual double difference_step() const { return 1e-5 * length_scale(); }
+
+  // Principal curvatures from the gradient and Hessian (Goldman 2005), normal = grad/|grad|.
+  PrincipalCurvatures curvatures(const Vec3& p) const;
+};
+
+}  // namespace dynamesh
