@@ -324,24 +324,26 @@ int Mesh48::collect_weld_star(Vertex v, std::array<Corner, 4>& star) const {
 }
 
 bool Mesh48::can_weld(Vertex v) const {
-  if (v.idx >= vertex_corner_.size() || !is_alive(v) || is_base(v)) return false;
-  std::array<Corner, 4> star;
-  return collect_weld_star(v, star) != 0;
+  DiamondChange change;
+  return plan_weld(v, change);
 }
 
 bool Mesh48::weld(Vertex v) {
+  DiamondChange change;
+  if (!plan_weld(v, change)) return false;
+  apply_weld(change);
+  return true;
+}
+
+// The star holds the faces around v counter-clockwise, (v, n_i, n_i+1). The children of one
+// parent face share a non-parent ring vertex: (m, apex, a) follows (m, b, apex).
+bool Mesh48::plan_weld(Vertex v, DiamondChange& change) const {
   if (v.idx >= vertex_corner_.size() || !is_alive(v) || is_base(v)) return false;
   std::array<Corner, 4> star;
   const int count = collect_weld_star(v, star);
-  return count != 0 && weld_star(v, star, count);
-}
-
-// star holds the faces around v counter-clockwise, (v, n_i, n_i+1). The children of one
-// parent face share a non-parent ring vertex: (m, apex, a) follows (m, b, apex).
-bool Mesh48::weld_star(Vertex v, const std::array<Corner, 4>& star, int count) {
+  if (count == 0) return false;
   const std::uint32_t pa = parent_a_[v.idx], pb = parent_b_[v.idx];
   auto ring = [&](int i) { return faces_[star[(i + count) % count].face.idx].v[1]; };
-  DiamondChange change;
   change.vertex = v;
   change.parents = {Vertex(pa), Vertex(pb)};
   change.count = count / 2;
@@ -356,30 +358,38 @@ bool Mesh48::weld_star(Vertex v, const std::array<Corner, 4>& star, int count) {
     change.halves[0].children = {star[(j + 3) % 4].face, star[(j + 2) % 4].face};
     change.halves[1].children = {star[(j + 1) % 4].face, star[j].face};
   }
-  std::uint32_t merged[2] = {kInvalidIndex, kInvalidIndex};
   for (int h = 0; h < change.count; ++h) {
     Bisection& half = change.halves[h];
-    const FaceRecord c0 = faces_[half.children[0].idx];  // (m, apex, x)
-    const FaceRecord c1 = faces_[half.children[1].idx];  // (m, y, apex)
-    const std::uint32_t p = half.children[0].idx;
-    half.parent = Face(p);
+    const FaceRecord& c0 = faces_[half.children[0].idx];  // (m, apex, x)
+    const FaceRecord& c1 = faces_[half.children[1].idx];  // (m, y, apex)
+    half.parent = half.children[0];
     half.parent_vertices = {Vertex(c0.v[1]), Vertex(c0.v[2]), Vertex(c1.v[1])};
-    set_face(p, c0.v[1], c0.v[2], c1.v[1], static_cast<std::uint8_t>(c0.depth - 1));
+  }
+  return true;
+}
+
+void Mesh48::apply_weld(const DiamondChange& change) {
+  for (int h = 0; h < change.count; ++h) {
+    const Bisection& half = change.halves[h];
+    const FaceRecord c0 = faces_[half.children[0].idx];
+    const FaceRecord c1 = faces_[half.children[1].idx];
+    const std::uint32_t p = half.parent.idx;
+    const auto& pv = half.parent_vertices;
+    set_face(p, pv[0].idx, pv[1].idx, pv[2].idx, static_cast<std::uint8_t>(c0.depth - 1));
     faces_[p].twin[0] = kInvalidIndex;
     link(p, 1, c1.twin[0]);
     link(p, 2, c0.twin[0]);
     faces_[half.children[1].idx].v[0] = kInvalidIndex;
     free_faces_.push_back(half.children[1].idx);
     --n_live_faces_;
-    merged[h] = p;
   }
-  if (change.count == 2) link(merged[0], 0, 3 * merged[1]);
-  vertex_corner_[v.idx] = kInvalidIndex;
-  parent_a_[v.idx] = parent_b_[v.idx] = kInvalidIndex;
-  free_vertices_.push_back(v.idx);
+  if (change.count == 2) link(change.halves[0].parent.idx, 0, 3 * change.halves[1].parent.idx);
+  const std::uint32_t v = change.vertex.idx;
+  vertex_corner_[v] = kInvalidIndex;
+  parent_a_[v] = parent_b_[v] = kInvalidIndex;
+  free_vertices_.push_back(v);
   --n_live_vertices_;
   notify_weld(change);
-  return true;
 }
 
 }  // namespace dynamesh

@@ -150,6 +150,9 @@ class Mesh48 {
   // Removes v and restores its parent edge; returns false (and changes nothing) when
   // !can_weld(v).
   bool weld(Vertex v);
+  // What weld(v) would do, without doing it: fills `change` (each half's parent slot, its
+  // children and the parent triangle's vertices) and returns true when v can be welded.
+  bool plan_weld(Vertex v, DiamondChange& change) const;
 
   // --- listeners -------------------------------------------------------------------------
   void add_listener(MeshListener* listener);
@@ -179,7 +182,7 @@ class Mesh48 {
   void bisect_half(Bisection& half, std::uint32_t m);
   Vertex split_diamond(Face f);
   int collect_weld_star(Vertex v, std::array<Corner, 4>& star) const;
-  bool weld_star(Vertex v, const std::array<Corner, 4>& star, int count);
+  void apply_weld(const DiamondChange& change);
   void notify_split(const DiamondChange& change);
   void notify_weld(const DiamondChange& change);
   // Corner of v in the face across the edge that leaves f at corner (f, local)

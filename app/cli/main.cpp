@@ -1,0 +1,38 @@
+// dynamesh-cli: the batch command line. Bad input: one line on stderr, exit status 2.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli/run_command.h"
+#include "app/cli/run_options.h"
+#include "core/surface/scene_registry.h"
+
+int main(int argc, char** argv) {
+  using namespace dynamesh;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      std::cout << main_help();
+      return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "scenes") {
+      std::cout << scene_help();
+      return 0;
+    }
+    if (args[0] != "run")
+      throw UsageError("unknown command '" + args[0] + "' (try: dynamesh-cli run --help)");
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    for (const std::string& a : rest)
+      if (a == "--help" || a == "-h") {
+        std::cout << run_help();
+        return 0;
+      }
+    return run_command(parse_run_options(rest), std::cout, std::cerr);
+  } catch (const UsageError& e) {
+    std::cerr << "dynamesh-cli: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "dynamesh-cli: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,136 @@
+#include "app/cli/run_command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+
+#include "app/cli/run_summary.h"
+#include "core/adapt/adapter.h"
+#include "core/io/atomic_file.h"
+#include "core/io/mesh_export.h"
+#include "core/io/stats_csv.h"
+
+namespace dynamesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<Surface> build_scene(const RunOptions& o) {
+  bool registered = false;
+  for (const SceneInfo& s : list_scenes()) registered = registered || s.name == o.scene;
+  if (!registered && (o.scene == "mri" || o.scene == "expr"))
+    throw UsageError("scene '" + o.scene + "' is not available yet in this build");
+  try {
+    return make_scene(o.scene, o.params, o.scene_text);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+// Fails early, before any work, when an output cannot be written.
+void check_outputs(const RunOptions& o) {
+  if (!o.export_final_path.empty()) {
+    const std::string ext = fs::path(o.export_final_path).extension().string();
+    if (ext != ".ply" && ext != ".obj")
+      throw UsageError("--export-final " + o.export_final_path + ": use a .ply or .obj file name");
+    try {
+      AtomicFile probe(o.export_final_path);  // removed again, unless committed
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--export-final: ") + e.what());
+    }
+  }
+  for (const std::string* dir : {&o.export_dir, &o.render_dir}) {
+    if (dir->empty()) continue;
+    std::error_code ec;
+    fs::create_directories(*dir, ec);
+    if (ec || !fs::is_directory(*dir))
+      throw UsageError("cannot create directory " + *dir + ": " + ec.message());
+  }
+  if (!o.render_dir.empty())
+    throw UsageError(
+        "--render is not available yet in this build (offscreen rendering lands "
+        "with the viewer); use --export DIR for meshes");
+}
+
+CriterionList criteria_for(const RunOptions& o, const Surface& surface) {
+  double scene_edge_length = 0.0;
+  for (const SurfaceParameter& p : surface.parameters())
+    if (p.name == "L") scene_edge_length = p.value;
+  return default_criteria(o.scene, scene_edge_length, o.adapt, o.edge_length);
+}
+
+void log_step(std::ostream& log, const StepStats& s, int steps) {
+  log << "step " << std::setw(4) << s.step << "/" << steps << "  t=" << std::fixed
+      << std::setprecision(3) << s.time << "  triangles=" << s.triangles << "  +" << s.splits
+      << " -" << s.welds << "  max_err=" << std::scientific << std::setprecision(2) << s.max_error
+      << "  " << std::fixed << std::setprecision(1) << 1e3 * s.seconds.total << " ms"
+      << (s.budget_hit ? "  (triangle budget hit)" : "") << "\n";
+  log.unsetf(std::ios::floatfield);
+}
+
+std::string frame_name(const std::string& dir, std::uint64_t step, const char* ext) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05llu.%s", static_cast<unsigned long long>(step), ext);
+  return (fs::path(dir) / name).string();
+}
+
+}  // namespace
+
+int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
+  if (o.t0 < 0 || o.t0 > 1 || o.t1 < 0 || o.t1 > 1)
+    throw UsageError("--t0 and --t1 must lie in [0, 1] (normalised animation time)");
+  std::unique_ptr<Surface> surface = build_scene(o);
+  check_outputs(o);
+  std::unique_ptr<StatsCsvWriter> csv;
+  if (!o.stats_path.empty()) {
+    try {
+      csv = std::make_unique<StatsCsvWriter>(o.stats_path);
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--stats: ") + e.what());
+    }
+  }
+
+  surface->set_time(o.t0);
+  Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
+  RunSummary summary;
+  summary.scene = o.scene;
+  summary.steps = o.steps;
+  std::vector<double> step_seconds;
+  auto record = [&](const StepStats& s) {
+    summary.total_splits += s.splits;
+    summary.total_welds += s.welds;
+    summary.budget_hit = summary.budget_hit || s.budget_hit;
+    if (csv) csv->write(s, summary.total_splits, summary.total_welds);
+    if (!o.quiet) log_step(log, s, o.steps);
+    if (o.check) {
+      const CheckReport report = adapter.mesh().check();
+      if (!report.ok()) throw std::logic_error("mesh invariants broken: " + report.summary(5));
+    }
+    if (!o.export_dir.empty() && s.step % static_cast<std::uint64_t>(o.export_every) == 0)
+      write_ply(frame_name(o.export_dir, s.step, "ply"), adapter.snapshot());
+  };
+  record(adapter.initialize());
+  for (int i = 1; i <= o.steps; ++i) {
+    const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
+    const StepStats& s = adapter.step(t);
+    step_seconds.push_back(s.seconds.total);
+    record(s);
+  }
+  summary.last = adapter.stats();
+  if (step_seconds.empty()) step_seconds.push_back(summary.last.seconds.total);
+  std::nth_element(step_seconds.begin(), step_seconds.begin() + step_seconds.size() / 2,
+                   step_seconds.end());
+  summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
+  summary.quality = measure_quality(adapter.mesh());
+  if (!o.export_final_path.empty()) write_mesh(o.export_final_path, adapter.snapshot());
+  if (csv) csv->close();
+  if (summary.budget_hit && !o.quiet)
+    log << "note: the triangle budget (--max-triangles " << o.adapt.max_triangles
+        << ") stopped refinement; errors may exceed T + eps\n";
+  out << to_json(summary) << std::endl;
+  return 0;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,42 @@
+// Options of `dynamesh-cli run` and their parsing (DESIGN.md, "Command line").
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/adapt/adapt_options.h"
+#include "core/surface/scene_registry.h"
+
+namespace dynamesh {
+
+// Bad input on the command line: reported as one line, exit status 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct RunOptions {
+  std::string scene = "capsule-bend";
+  ParameterOverrides params;
+  TextOptions scene_text;  // --volume, --implicit, ... for scenes that read text
+  double t0 = 0.0, t1 = 1.0;
+  int steps = 50;
+  AdaptOptions adapt;
+  bool epsilon_given = false;
+  double edge_length = 0.0;  // 0: the scene's own
+  std::string stats_path, export_final_path, export_dir, render_dir;
+  int export_every = 1;
+  int width = 1280, height = 960;
+  std::string color = "error";
+  bool quiet = false;
+  bool check = false;  // run the mesh invariant check after every step
+};
+
+// Parses the words after `run`. Throws UsageError with one line saying what is wrong.
+RunOptions parse_run_options(const std::vector<std::string>& args);
+
+std::string run_help();
+std::string main_help();
+
+}  // namespace dynamesh

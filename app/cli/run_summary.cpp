@@ -1,0 +1,38 @@
+#include "app/cli/run_summary.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace dynamesh {
+namespace {
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "null";
+  std::ostringstream out;
+  out.precision(10);
+  out << x;
+  return out.str();
+}
+
+}  // namespace
+
+std::string to_json(const RunSummary& s) {
+  std::ostringstream out;
+  const StepStats& l = s.last;
+  out << "{\"scene\":\"" << s.scene << "\",\"steps\":" << s.steps << ",\"time\":" << number(l.time)
+      << ",\"triangles\":" << l.triangles << ",\"vertices\":" << l.vertices
+      << ",\"max_sample_error\":" << number(l.max_error)
+      << ",\"mean_sample_error\":" << number(l.mean_error) << ",\"samples\":" << l.samples
+      << ",\"splits\":" << s.total_splits << ",\"welds\":" << s.total_welds
+      << ",\"seconds_per_step\":" << number(s.seconds_per_step_median)
+      << ",\"valence_min\":" << s.quality.valence_min
+      << ",\"valence_max\":" << s.quality.valence_max
+      << ",\"min_angle_deg\":" << number(s.quality.min_angle_deg)
+      << ",\"max_aspect_ratio\":" << number(s.quality.max_aspect)
+      << ",\"mean_aspect_ratio\":" << number(s.quality.mean_aspect)
+      << ",\"vertices_kept\":" << l.vertices_kept
+      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false") << "}";
+  return out.str();
+}
+
+}  // namespace dynamesh

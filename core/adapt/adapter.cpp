@@ -1,0 +1,345 @@
+#include "core/adapt/adapter.h"
+
+#include "core/parallel.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+
+#include "core/geometry/tangential_smoothing.h"
+
+namespace dynamesh {
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+struct SplitEntry {
+  double urgency;
+  std::uint32_t face, stamp;
+  bool operator<(const SplitEntry& o) const { return urgency < o.urgency; }  // largest on top
+};
+
+struct WeldEntry {
+  double error;
+  std::uint32_t vertex;
+  bool operator<(const WeldEntry& o) const { return error > o.error; }  // smallest on top
+};
+
+}  // namespace
+
+// Follows every split and weld: brings new vertices onto the surface, stamps changed face
+// slots (so stale queue entries are recognised), remembers which faces a split touched and
+// when each vertex was born (for temporal coherence).
+class Adapter::Tracker final : public MeshListener {
+ public:
+  explicit Tracker(const SurfaceProbe& probe) : probe_(probe) {}
+
+  void after_split(Mesh48& mesh, const DiamondChange& change) override {
+    grow(mesh);
+    if (!probe_.project_vertex(mesh, change.vertex)) ++projection_failures;
+    birth_step[change.vertex.idx] = current_step;
+    for (int h = 0; h < change.count; ++h)
+      for (Face f : change.halves[h].children) touch(f);
+    ++vertices_created;
+  }
+  void after_weld(Mesh48& mesh, const DiamondChange& change) override {
+    grow(mesh);
+    for (int h = 0; h < change.count; ++h) {
+      touch(change.halves[h].children[0]);
+      ++stamp[change.halves[h].children[1].idx];
+    }
+  }
+
+  void grow(const Mesh48& mesh) {
+    if (stamp.size() < mesh.face_capacity()) stamp.resize(mesh.face_capacity(), 0);
+    if (birth_step.size() < mesh.vertex_capacity()) birth_step.resize(mesh.vertex_capacity(), 0);
+  }
+  void touch(Face f) {
+    ++stamp[f.idx];
+    touched.push_back(f);
+  }
+
+  std::vector<std::uint32_t> stamp;
+  std::vector<std::uint64_t> birth_step;
+  std::vector<Face> touched;
+  std::uint64_t current_step = 0;
+  std::size_t vertices_created = 0, projection_failures = 0;
+
+ private:
+  const SurfaceProbe& probe_;
+};
+
+Adapter::Adapter(Surface& surface, const AdaptOptions& options, CriterionList criteria)
+    : surface_(surface),
+      probe_(surface),
+      options_(options),
+      criteria_(std::move(criteria)),
+      samples_(options.density, options.seed),
+      tracker_(std::make_unique<Tracker>(probe_)) {}
+
+Adapter::~Adapter() = default;
+
+void Adapter::set_options(const AdaptOptions& options, CriterionList criteria) {
+  options_ = options;
+  criteria_ = std::move(criteria);
+  samples_.set_density(options.density);
+}
+
+const StepStats& Adapter::initialize() {
+  Stopwatch clock;
+  mesh_ = surface_.base_mesh();
+  // The tracker places new vertices before the samples are redistributed over them.
+  mesh_.add_listener(tracker_.get());
+  mesh_.add_listener(&samples_);
+  step_ = 0;
+  stats_ = StepStats{};
+  stats_.time = surface_.time();
+  surface_changed();  // remember the state the initial mesh was made for
+  tracker_->current_step = 0;
+  tracker_->grow(mesh_);
+  samples_.reset(mesh_);
+  stats_.seconds.project = clock.lap();
+  samples_.evaluate_all(mesh_, probe_);
+  stats_.seconds.sample = clock.lap();
+  if (options_.structural) {
+    // Refine to the centre of the band (criteria.h, SplitQuery::initial), then let a weld and
+    // a split pass settle it: the result is a fixed point of step() on a static surface.
+    split_pass(true);
+    stats_.seconds.split = clock.lap();
+    weld_pass();
+    stats_.seconds.weld = clock.lap();
+    split_pass(false);
+    stats_.seconds.split += clock.lap();
+  }
+  finish_stats();
+  return stats_;
+}
+
+const StepStats& Adapter::step(double t) {
+  Stopwatch clock;
+  surface_.set_time(t);
+  stats_ = StepStats{};
+  stats_.step = ++step_;
+  ++tracker_->current_step;
+  stats_.time = t;
+  const bool correct = options_.geometric && surface_changed();
+  if (correct) normal_correction();
+  stats_.seconds.project = clock.lap();
+  if (correct) tangential_correction();
+  stats_.seconds.smooth = clock.lap();
+  sampling();
+  stats_.seconds.sample = clock.lap();
+  if (options_.structural) weld_pass();
+  stats_.seconds.weld = clock.lap();
+  if (options_.structural) split_pass(false);
+  stats_.seconds.split = clock.lap();
+  finish_stats();
+  return stats_;
+}
+
+bool Adapter::surface_changed() {
+  std::vector<double> parameters;
+  for (const SurfaceParameter& p : surface_.parameters()) parameters.push_back(p.value);
+  const bool changed = surface_.time() != last_time_ || parameters != last_parameters_;
+  last_time_ = surface_.time();
+  last_parameters_ = std::move(parameters);
+  return changed;
+}
+
+void Adapter::normal_correction() {
+  const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+  std::size_t failures = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    if (mesh_.is_alive(v) && !probe_.project_vertex(mesh_, v)) ++failures;
+  }
+  tracker_->projection_failures += failures;
+}
+
+void Adapter::tangential_correction() {
+  const SmoothingResult r = smooth_tangentially(mesh_, surface_, options_.smoothing);
+  tracker_->projection_failures += r.projection_failures;
+}
+
+void Adapter::sampling() {
+  samples_.refresh_patterns(mesh_);
+  samples_.evaluate_all(mesh_, probe_);
+}
+
+double Adapter::split_urgency(Face f, bool initial) const {
+  const SplitQuery q{mesh_, f, samples_.face_error(f), initial};
+  double urgency = 0.0;
+  for (const auto& c : criteria_)
+    if (c->applies_to(mesh_, f)) urgency = std::max(urgency, c->split_urgency(q));
+  return urgency;
+}
+
+double Adapter::star_error(const DiamondChange& plan) const {
+  double e = 0.0;
+  for (int h = 0; h < plan.count; ++h)
+    for (Face f : plan.halves[h].children) e = std::max(e, samples_.face_error(f));
+  return e;
+}
+
+bool Adapter::weld_allowed(const DiamondChange& plan, double error) const {
+  const WeldQuery q{mesh_, plan, error, star_error(plan)};
+  for (const auto& c : criteria_)
+    if (c->applies_to(mesh_, plan) && !c->allows_weld(q)) return false;
+  return true;
+}
+
+void Adapter::weld_pass() {
+  // Post-weld errors of every weldable vertex, in parallel (each sample belongs to the star
+  // of its face's newest vertex only, so this costs at most one evaluation per sample).
+  const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+  std::vector<double> key(static_cast<std::size_t>(n), -1.0);
+#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    DiamondChange plan;
+    if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
+    const double error = samples_.weld_error(mesh_, probe_, plan);
+    if (weld_allowed(plan, error)) key[static_cast<std::size_t>(i)] = error;
+  }
+  std::priority_queue<WeldEntry> queue;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (key[static_cast<std::size_t>(i)] >= 0)
+      queue.push({key[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(i)});
+  tracker_->touched.clear();
+  DiamondChange plan;
+  while (!queue.empty()) {
+    const Vertex v(queue.top().vertex);
+    queue.pop();
+    if (!mesh_.plan_weld(v, plan)) continue;
+    mesh_.weld(v);
+    ++stats_.welds;
+    // Welding may make the merged faces' newest vertices weldable: the cascade.
+    for (int h = 0; h < plan.count; ++h) {
+      const Vertex apex = plan.halves[h].parent_vertices[0];
+      DiamondChange next;
+      if (!mesh_.plan_weld(apex, next)) continue;
+      const double error = samples_.weld_error(mesh_, probe_, next);
+      if (weld_allowed(next, error)) queue.push({error, apex.idx});
+    }
+  }
+  // Merged faces need their errors against their new shape before the split pass.
+  std::vector<Face> merged;
+  for (Face f : tracker_->touched)
+    if (mesh_.is_alive(f)) merged.push_back(f);
+  std::sort(merged.begin(), merged.end());
+  merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+  const auto m = static_cast<std::int64_t>(merged.size());
+#pragma omp parallel for schedule(dynamic, 64) if (m > kParallelMin)
+  for (std::int64_t i = 0; i < m; ++i)
+    samples_.evaluate_face(mesh_, probe_, merged[static_cast<std::size_t>(i)]);
+}
+
+void Adapter::split_pass(bool initial) {
+  std::priority_queue<SplitEntry> queue;
+  for (Face f : mesh_.live_faces()) {
+    const double u = split_urgency(f, initial);
+    if (u > 1.0) queue.push({u, f.idx, tracker_->stamp[f.idx]});
+  }
+  const std::size_t created_before = tracker_->vertices_created;
+  while (!queue.empty()) {
+    const SplitEntry e = queue.top();
+    queue.pop();
+    const Face f(e.face);
+    if (!mesh_.is_alive(f) || tracker_->stamp[f.idx] != e.stamp) continue;
+    if (mesh_.n_faces() + 4 > options_.max_triangles) {
+      stats_.budget_hit = true;
+      break;
+    }
+    tracker_->touched.clear();
+    mesh_.split(f);
+    for (Face t : tracker_->touched) {
+      if (!mesh_.is_alive(t)) continue;
+      samples_.evaluate_face(mesh_, probe_, t);
+    }
+    for (Face t : tracker_->touched) {
+      if (!mesh_.is_alive(t)) continue;
+      const double u = split_urgency(t, initial);
+      if (u > 1.0) queue.push({u, t.idx, tracker_->stamp[t.idx]});
+    }
+  }
+  stats_.splits += tracker_->vertices_created - created_before;
+}
+
+void Adapter::finish_stats() {
+  stats_.triangles = mesh_.n_faces();
+  stats_.vertices = mesh_.n_vertices();
+  const SampleStore::Summary s = samples_.summary(mesh_);
+  stats_.max_error = s.max_error;
+  stats_.mean_error = s.mean_error;
+  stats_.samples = s.samples;
+  std::size_t kept = 0;
+  for (Vertex v : mesh_.live_vertices()) kept += tracker_->birth_step[v.idx] < step_;
+  stats_.vertices_kept = step_ == 0 ? 0 : kept;
+  stats_.projection_failures = tracker_->projection_failures;
+  tracker_->projection_failures = 0;
+  const PhaseSeconds& p = stats_.seconds;
+  stats_.seconds.total = p.project + p.smooth + p.sample + p.weld + p.split;
+}
+
+MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {
+  const std::size_t n = mesh_.vertex_capacity();
+  std::vector<Vec3> normals(n, Vec3::UnitZ());
+  std::vector<ScalarField> scalars;
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(dynamic, 1024) if (count > kParallelMin)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    if (mesh_.is_alive(v)) normals[static_cast<std::size_t>(i)] = probe_.normal_at(mesh_, v);
+  }
+  if (fields.error) {
+    ScalarField error{"error", std::vector<float>(n, 0.0f)};
+    for (Face f : mesh_.live_faces())
+      for (Vertex v : mesh_.vertices(f))
+        error.values[v.idx] =
+            std::max(error.values[v.idx], static_cast<float>(samples_.face_error(f)));
+    scalars.push_back(std::move(error));
+  }
+  if (fields.curvature) {
+    ScalarField curvature{"curvature", std::vector<float>(n, 0.0f)};
+    const auto* par = dynamic_cast<const ParametricSurface*>(&surface_);
+    const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface_);
+#pragma omp parallel for schedule(dynamic, 1024) if (count > kParallelMin)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      if (!mesh_.is_alive(v)) continue;
+      const PrincipalCurvatures k =
+          par ? par->curvatures(mesh_.uv(v)) : imp->curvatures(mesh_.position(v));
+      curvature.values[static_cast<std::size_t>(i)] =
+          static_cast<float>(std::max(std::abs(k.k1), std::abs(k.k2)));
+    }
+    scalars.push_back(std::move(curvature));
+  }
+  if (fields.valence || fields.level) {
+    ScalarField valence{"valence", std::vector<float>(n, 0.0f)};
+    ScalarField level{"level", std::vector<float>(n, 0.0f)};
+    for (Vertex v : mesh_.live_vertices()) {
+      valence.values[v.idx] = static_cast<float>(mesh_.valence(v));
+      level.values[v.idx] = static_cast<float>(mesh_.level(v));
+    }
+    if (fields.valence) scalars.push_back(std::move(valence));
+    if (fields.level) scalars.push_back(std::move(level));
+  }
+  MeshSnapshot snap = make_snapshot(mesh_, &normals, scalars);
+  snap.time = surface_.time();
+  snap.step = step_;
+  return snap;
+}
+
+}  // namespace dynamesh

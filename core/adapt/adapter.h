@@ -1,0 +1,89 @@
+// Adapter: keeps a 4-8 mesh adapted to a deforming surface S(t) (de Goes et al. 2006).
+// Each step, in this order (DESIGN.md): normal correction (vertices onto S(t)), tangential
+// correction (Equation 1), sampling (every sample's error), welds of every vertex whose
+// post-weld error is below T - eps (smallest first, cascading), then splits of every edge
+// whose diamond's error is above T + eps (largest first). The mesh at the end of a step is
+// the one that was measured.
+//
+// Geometric correction repairs what the deformation since the previous step did: when S(t)
+// has not changed (same time, same parameters), both corrections are skipped, so a static
+// surface is a fixed point of step() — no drift, no flicker.
+//
+// The adapter owns the mesh and its samples; the outside world reads it through mesh(),
+// stats() and snapshot() and steers it through set_options() and step().
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/adapt/adapt_options.h"
+#include "core/adapt/criteria.h"
+#include "core/adapt/mesh_snapshot.h"
+#include "core/adapt/sample_store.h"
+#include "core/adapt/step_stats.h"
+#include "core/adapt/surface_probe.h"
+#include "core/mesh/mesh48.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+// Per-vertex fields a snapshot can carry (each costs time; curvature the most).
+struct SnapshotFields {
+  bool error = true;       // largest sampled error of the incident faces
+  bool curvature = false;  // largest |principal curvature| of S at the vertex
+  bool valence = false;
+  bool level = false;
+};
+
+class Adapter {
+ public:
+  // `surface` must outlive the adapter; the adapter sets its time.
+  Adapter(Surface& surface, const AdaptOptions& options, CriterionList criteria);
+  ~Adapter();
+  Adapter(const Adapter&) = delete;
+  Adapter& operator=(const Adapter&) = delete;
+
+  // Base mesh at the surface's current time, refined until within tolerance (step 0).
+  const StepStats& initialize();
+  // One step to time t.
+  const StepStats& step(double t);
+
+  // Takes effect at the next step (a new density redraws patterns as needed).
+  void set_options(const AdaptOptions& options, CriterionList criteria);
+  const AdaptOptions& options() const { return options_; }
+
+  const Mesh48& mesh() const { return mesh_; }
+  const SampleStore& samples() const { return samples_; }
+  const Surface& surface() const { return surface_; }
+  const StepStats& stats() const { return stats_; }
+  MeshSnapshot snapshot(const SnapshotFields& fields = {}) const;
+
+ private:
+  class Tracker;
+
+  void normal_correction();
+  void tangential_correction();
+  void sampling();
+  void weld_pass();
+  void split_pass(bool initial);
+  double split_urgency(Face f, bool initial) const;
+  bool weld_allowed(const DiamondChange& plan, double error) const;
+  double star_error(const DiamondChange& plan) const;
+  void finish_stats();
+  // True when the surface's time or parameters differ from the previous step's.
+  bool surface_changed();
+
+  Surface& surface_;
+  SurfaceProbe probe_;
+  AdaptOptions options_;
+  CriterionList criteria_;
+  Mesh48 mesh_;
+  SampleStore samples_;
+  std::unique_ptr<Tracker> tracker_;
+  StepStats stats_;
+  std::uint64_t step_ = 0;
+  double last_time_ = 0.0;
+  std::vector<double> last_parameters_;
+};
+
+}  // namespace dynamesh

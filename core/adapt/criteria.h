@@ -1,0 +1,114 @@
+// Adaptation criteria: small modules that ask for a split or veto a weld (in the manner of
+// OpenMesh's decimater modules). The adapter splits a face's refinement edge when ANY
+// applicable criterion asks for it and welds a vertex only when EVERY applicable criterion
+// allows it (DESIGN.md, "The algorithm"). A criterion may be restricted to a region of
+// space; an element that straddles the region's border counts as inside, so it obeys the
+// stricter of the criteria on either side.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/adapt/adapt_options.h"
+#include "core/geometry/vector_types.h"
+#include "core/mesh/mesh48.h"
+
+namespace dynamesh {
+
+struct SplitQuery {
+  const Mesh48& mesh;
+  Face face;
+  double error;  // the face's L-infinity sampled error
+  // Initial refinement: split to the centre of the hysteresis band (T, or L) rather than its
+  // upper bound. While the surface moves, elements drift across the whole band (they split
+  // only above it and weld only below it), so a mesh refined to the centre is a typical
+  // state of the animation: a sweep t: 0 -> 1 -> 0 returns close to it. Refining to either
+  // bound instead gives a start up to twice finer or coarser than where the sweep returns.
+  bool initial = false;
+};
+
+struct WeldQuery {
+  const Mesh48& mesh;
+  const DiamondChange& plan;  // from Mesh48::plan_weld
+  double error;               // L-infinity sampled error after the weld
+  double current_error;       // L-infinity sampled error of the star's faces now
+};
+
+class Criterion {
+ public:
+  virtual ~Criterion() = default;
+  virtual std::string name() const = 0;
+  // How urgently the face's refinement edge should be split: > 1 asks for a split (larger
+  // first), <= 1 does not.
+  virtual double split_urgency(const SplitQuery& q) const = 0;
+  virtual bool allows_weld(const WeldQuery& q) const = 0;
+  // Whether the criterion speaks for this face / weld at all (regions).
+  virtual bool applies_to(const Mesh48&, Face) const { return true; }
+  virtual bool applies_to(const Mesh48&, const DiamondChange&) const { return true; }
+};
+
+using CriterionList = std::vector<std::unique_ptr<Criterion>>;
+
+// The paper's geometric error with hysteresis: split above T + eps, weld below T - eps.
+// Also weld when the weld leaves the error as it is (within 5%) and within T + eps:
+// refinement that bought no accuracy is undone. (Where the surface curves in one direction
+// only, as along a cylinder, a bisection across the flat direction does not reduce the
+// error; without this rule both levels would be stable inside the band and the mesh would
+// keep up to twice the triangles it needs, depending on its history.)
+class GeometricErrorCriterion final : public Criterion {
+ public:
+  GeometricErrorCriterion(double threshold, double epsilon);
+  std::string name() const override { return "error"; }
+  double split_urgency(const SplitQuery& q) const override;
+  bool allows_weld(const WeldQuery& q) const override;
+
+ private:
+  double threshold_, split_above_, weld_below_;
+  static constexpr double kNoGain = 1.05;
+};
+
+// A target edge length L. A 4-8 split shortens the refinement edge by sqrt(2), so the band
+// must be at least that wide to be reachable; it is a factor 2 wide around L for
+// hysteresis: split when the refinement edge is longer than L 2^(1/4), weld only when the
+// restored parent edge would be shorter than L 2^(-1/4). Refinement edges then lie in
+// [L 2^(-3/4), L 2^(1/4)] away from the influence of other criteria.
+class EdgeLengthCriterion final : public Criterion {
+ public:
+  explicit EdgeLengthCriterion(double target_length);
+  std::string name() const override { return "edge-length"; }
+  double split_urgency(const SplitQuery& q) const override;
+  bool allows_weld(const WeldQuery& q) const override;
+  double split_above() const { return split_above_; }
+  double weld_below() const { return weld_below_; }
+
+ private:
+  double target_, split_above_, weld_below_;
+};
+
+// Restricts another criterion to the half-space {p : dot(normal, p) < offset}; a face or weld
+// star with any vertex inside is inside.
+class HalfSpaceCriterion final : public Criterion {
+ public:
+  HalfSpaceCriterion(std::unique_ptr<Criterion> inner, const Vec3& normal, double offset);
+  std::string name() const override;
+  double split_urgency(const SplitQuery& q) const override { return inner_->split_urgency(q); }
+  bool allows_weld(const WeldQuery& q) const override { return inner_->allows_weld(q); }
+  bool applies_to(const Mesh48& mesh, Face f) const override;
+  bool applies_to(const Mesh48& mesh, const DiamondChange& plan) const override;
+
+ private:
+  bool inside(const Vec3& p) const { return normal_.dot(p) < offset_; }
+  std::unique_ptr<Criterion> inner_;
+  Vec3 normal_;
+  double offset_;
+};
+
+// The criteria a scene is adapted with: the geometric error everywhere, except for the
+// multi-criteria `sphere` (paper Section 4.3): error on x < 0 and edge length L on x >= 0,
+// with L from `edge_length` if positive, else the scene's parameter L. Elsewhere a positive
+// `edge_length` adds an edge-length criterion everywhere.
+CriterionList default_criteria(const std::string& scene, double scene_edge_length,
+                               const AdaptOptions& options, double edge_length);
+
+}  // namespace dynamesh

@@ -1,0 +1,92 @@
+// SampleStore: the stochastic stratified samples of de Goes et al. 2006, Section 3.1.
+// Each face carries a jittered stratified pattern in barycentric coordinates at a density D
+// (samples per unit area, at least kMinSamplesPerFace per face: the paper asks for at least
+// one; the quadratic error model needs three, and a 2 x 2 stratification gives four). Samples
+// follow splits and welds: as a MeshListener the store re-expresses each sample in the barycentric
+// coordinates of the face that now holds it, so the density is kept without drawing new samples; a
+// face left with none, or with a count far from D * area, gets a fresh pattern.
+//
+// Storage: one pool of samples with a free list; each face slot heads a singly linked list
+// of its samples. No allocation per operation once the pool has grown.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/adapt/surface_probe.h"
+#include "core/mesh/mesh48.h"
+
+namespace dynamesh {
+
+class SampleStore final : public MeshListener {
+ public:
+  static constexpr std::uint32_t kMinSamplesPerFace = 4;
+
+  SampleStore(double density, std::uint64_t seed);
+
+  // Fresh patterns on every face of `mesh` (positions define the areas).
+  void reset(const Mesh48& mesh);
+  void set_density(double density) { density_ = density; }
+  double density() const { return density_; }
+
+  // Errors of every sample against the surface, in parallel; updates each face's error.
+  void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
+  void evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
+  // The L-infinity error the weld planned in `plan` would leave: every sample of the star
+  // measured against the two (one) parent triangles, with the quadratic model.
+  double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan) const;
+  // Draws new patterns for faces whose sample count is below half or above twice
+  // max(1, D * area); returns how many faces were redrawn. Their errors need evaluating.
+  std::size_t refresh_patterns(const Mesh48& mesh);
+
+  // L-infinity error of the face as of its last evaluation: the larger of its largest sample
+  // error and the maximum of the quadratic model fitted to its samples (error_model.h).
+  double face_error(Face f) const { return face_error_[f.idx]; }
+  std::uint32_t count(Face f) const { return face_count_[f.idx]; }
+  std::size_t n_samples() const { return samples_.size() - free_.size(); }
+  // Visits the face's samples as fn(barycentric Vec3, error).
+  template <class Fn>
+  void for_each_sample(Face f, Fn&& fn) const;
+
+  // Largest and mean error over all samples of live faces.
+  struct Summary {
+    double max_error = 0.0, mean_error = 0.0;
+    std::size_t samples = 0;
+  };
+  Summary summary(const Mesh48& mesh) const;
+
+  void after_split(Mesh48& mesh, const DiamondChange& change) override;
+  void after_weld(Mesh48& mesh, const DiamondChange& change) override;
+
+ private:
+  struct Sample {
+    float b1, b2;  // barycentric coordinates of vertices 1 and 2; b0 = 1 - b1 - b2
+    float error;
+    std::uint32_t next;
+  };
+
+  void grow_faces(std::size_t capacity);
+  void clear_face(std::uint32_t f);
+  void push(std::uint32_t f, float b1, float b2, float error);
+  void draw_pattern(const Mesh48& mesh, std::uint32_t f);
+  std::uint32_t target_count(const Mesh48& mesh, Face f) const;
+
+  double density_;
+  std::uint64_t seed_;
+  std::uint64_t patterns_drawn_ = 0;  // makes every pattern's jitter distinct and reproducible
+  std::vector<Sample> samples_;
+  std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> face_head_, face_count_;
+  std::vector<double> face_error_;
+  std::vector<std::uint32_t> scratch_;  // sample ids while redistributing
+};
+
+template <class Fn>
+void SampleStore::for_each_sample(Face f, Fn&& fn) const {
+  for (std::uint32_t s = face_head_[f.idx]; s != kInvalidIndex; s = samples_[s].next) {
+    const Sample& x = samples_[s];
+    fn(Vec3(1.0 - x.b1 - x.b2, x.b1, x.b2), static_cast<double>(x.error));
+  }
+}
+
+}  // namespace dynamesh

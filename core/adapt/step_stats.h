@@ -1,0 +1,27 @@
+// What one adaptation step did and cost.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace dynamesh {
+
+struct PhaseSeconds {
+  double project = 0, smooth = 0, sample = 0, weld = 0, split = 0, total = 0;
+};
+
+struct StepStats {
+  std::uint64_t step = 0;  // 0 is the initialisation
+  double time = 0.0;       // surface time t
+  std::size_t triangles = 0, vertices = 0;
+  std::size_t splits = 0;  // vertices created, forced splits included
+  std::size_t welds = 0;
+  double max_error = 0.0, mean_error = 0.0;  // over all samples, after the step
+  std::size_t samples = 0;
+  std::size_t vertices_kept = 0;  // vertices alive before and after the step
+  std::size_t projection_failures = 0;
+  bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  PhaseSeconds seconds;
+};
+
+}  // namespace dynamesh

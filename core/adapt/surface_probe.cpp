@@ -1,0 +1,46 @@
+#include "core/adapt/surface_probe.h"
+
+#include <cmath>
+
+#include "core/surface/projection.h"
+#include "core/surface/surface_distance.h"
+
+namespace dynamesh {
+
+SurfaceProbe::SurfaceProbe(const Surface& surface)
+    : surface_(surface),
+      parametric_(dynamic_cast<const ParametricSurface*>(&surface)),
+      implicit_(dynamic_cast<const ImplicitSurface*>(&surface)),
+      // Beyond this the first-order distance may be off by more than a few per cent.
+      first_order_limit_(0.02 * surface.length_scale()) {}
+
+bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
+  if (parametric_) {
+    mesh.position(v) = parametric_->position(mesh.uv(v));
+    return true;
+  }
+  const ProjectionResult r = project_to_surface(*implicit_, mesh.position(v));
+  mesh.position(v) = r.point;
+  return r.converged;
+}
+
+Vec3 SurfaceProbe::residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const {
+  const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
+  if (parametric_) return x - parametric_->position(b[0] * uv[0] + b[1] * uv[1] + b[2] * uv[2]);
+  Vec3 g;
+  const double f = implicit_->value_gradient(x, g);
+  const double gnorm = g.norm();
+  const double first_order = f / gnorm;
+  if (gnorm > 0 && std::abs(first_order) < first_order_limit_) return Vec3(first_order, 0, 0);
+  return Vec3(std::copysign(distance_to_surface(*implicit_, x), f), 0, 0);
+}
+
+Vec3 SurfaceProbe::normal_at(const Mesh48& mesh, Vertex v) const {
+  if (parametric_) return parametric_->normal(mesh.uv(v));
+  Vec3 g;
+  implicit_->value_gradient(mesh.position(v), g);
+  const double n = g.norm();
+  return n > 0 ? Vec3(g / n) : Vec3::UnitZ();
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,44 @@
+// SurfaceProbe: the adapter's one door to the surface, hiding whether it is parametric or
+// implicit. It brings vertices onto S(t) (normal correction) and measures the distance of
+// mesh points to S(t) (SCENES.md, "Error of a mesh"). Thread-safe: const evaluation only.
+#pragma once
+
+#include "core/mesh/mesh48.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+class SurfaceProbe {
+ public:
+  explicit SurfaceProbe(const Surface& surface);
+
+  bool parametric() const { return parametric_ != nullptr; }
+  const Surface& surface() const { return surface_; }
+
+  // Moves v onto the surface (parametric: evaluates at its (u, v); implicit: Newton from its
+  // position). Returns false when an implicit projection did not converge (v is left at the
+  // last iterate, which is still closer than where it started).
+  bool project_vertex(Mesh48& mesh, Vertex v) const;
+
+  // Distance to the surface of the point with barycentric coordinates b over the triangle
+  // (v0, v1, v2) (positions p, parameters uv). Implicit: the first-order distance
+  // |F| / |grad F|, accurate to second order for errors small against the curvature radius
+  // (SCENES.md), with a full Newton projection when it is not small.
+  double error_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const {
+    return residual_at(p, uv, b).norm();
+  }
+  // The error as a vector that varies smoothly over the triangle (for QuadraticErrorModel):
+  // parametric x - S(uv); implicit (signed distance, 0, 0).
+  Vec3 residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const;
+
+  // Unit normal of the surface at a vertex (parametric: at its (u, v)).
+  Vec3 normal_at(const Mesh48& mesh, Vertex v) const;
+
+ private:
+  const Surface& surface_;
+  const ParametricSurface* parametric_ = nullptr;
+  const ImplicitSurface* implicit_ = nullptr;
+  double first_order_limit_ = 0.0;
+};
+
+}  // namespace dynamesh

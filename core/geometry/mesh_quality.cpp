@@ -1,0 +1,58 @@
+#include "core/geometry/mesh_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dynamesh {
+namespace {
+
+double angle_deg(const Vec3& at, const Vec3& p, const Vec3& q) {
+  const Vec3 u = p - at, v = q - at;
+  return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  if (!(area > 0)) return std::numeric_limits<double>::infinity();
+  const double s = 0.5 * (la + lb + lc);
+  const double circumradius = la * lb * lc / (4 * area), inradius = area / s;
+  return circumradius / (2 * inradius);
+}
+
+MeshQuality measure_quality(const Mesh48& mesh) {
+  MeshQuality q;
+  q.min_angle_deg = 180.0;
+  double sum_min_angle = 0, sum_aspect = 0;
+  for (Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+    const double angles[3] = {angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)};
+    const double lo = std::min({angles[0], angles[1], angles[2]});
+    q.min_angle_deg = std::min(q.min_angle_deg, lo);
+    q.max_angle_deg = std::max({q.max_angle_deg, angles[0], angles[1], angles[2]});
+    sum_min_angle += lo;
+    const double r = aspect_ratio(a, b, c);
+    q.max_aspect = std::max(q.max_aspect, r);
+    sum_aspect += r;
+    ++q.triangles;
+  }
+  if (q.triangles) {
+    q.mean_min_angle_deg = sum_min_angle / static_cast<double>(q.triangles);
+    q.mean_aspect = sum_aspect / static_cast<double>(q.triangles);
+  }
+  q.valence_min = std::numeric_limits<int>::max();
+  for (Vertex v : mesh.live_vertices()) {
+    const int val = mesh.valence(v);
+    q.valence_min = std::min(q.valence_min, val);
+    q.valence_max = std::max(q.valence_max, val);
+    if (!mesh.is_boundary(v)) ++q.valence_histogram[static_cast<std::size_t>(std::min(val, 15))];
+  }
+  if (mesh.n_vertices() == 0) q.valence_min = 0;
+  return q;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,220 @@
+#include "core/geometry/tangential_smoothing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/parallel.h"
+#include "core/surface/projection.h"
+
+namespace dynamesh {
+namespace {
+
+struct Frame {
+  PrincipalCurvatures k;
+  double l1 = 0, l2 = 0;  // curvature magnitudes as used by Equation 1
+};
+
+// The state one iteration reads (old positions) and writes (candidates).
+struct Work {
+  std::vector<Frame> frame;
+  std::vector<Vec3> position;
+  std::vector<Vec2> uv;
+  std::vector<std::uint8_t> moved;
+};
+
+double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto angle = [](const Vec3& at, const Vec3& p, const Vec3& q) {
+    const Vec3 u = p - at, v = q - at;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * 180.0 / M_PI;
+}
+
+// Centroid of the one-ring, without allocating. Uniform weights are the paper's; inverse
+// edge-length weights (Fujiwara's scale-invariant Laplacian) make a graded ring a fixed
+// point — with uniform weights a vertex at a level transition of the 4-8 mesh is pulled
+// towards the coarse side, fine regions lose resolution and are split again, and the mesh
+// grows cycle after cycle of a periodic deformation.
+Vec3 ring_centroid(const Mesh48& mesh, Vertex v, bool scale_invariant) {
+  const Vec3& p = mesh.position(v);
+  Vec3 sum = Vec3::Zero();
+  double weight = 0;
+  auto add = [&](Vertex n) {
+    const Vec3& q = mesh.position(n);
+    const double len = (q - p).norm();
+    const double w = scale_invariant ? (len > 0 ? 1.0 / len : 0.0) : 1.0;
+    sum += w * q;
+    weight += w;
+  };
+  Corner last{};
+  mesh.for_each_corner_around(v, [&](Corner c) {
+    add(mesh.vertex(c.face, (c.local + 1) % 3));
+    last = c;
+  });
+  if (mesh.is_boundary(v)) add(mesh.vertex(last.face, (last.local + 2) % 3));
+  return weight > 0 ? Vec3(sum / weight) : p;
+}
+
+PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v) {
+  if (const auto* p = dynamic_cast<const ParametricSurface*>(&s)) return p->curvatures(mesh.uv(v));
+  return static_cast<const ImplicitSurface&>(s).curvatures(mesh.position(v));
+}
+
+void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingOptions& o,
+                    Work& w) {
+  const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
+  double lo = 1e300, hi = 0.0;
+#pragma omp parallel for schedule(dynamic, 512) reduction(min   \
+                                                          : lo) \
+    reduction(max                                               \
+              : hi) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(v)) continue;
+    Frame& f = w.frame[static_cast<std::size_t>(i)];
+    f.k = curvature_of(surface, mesh, v);
+    f.l1 = std::abs(f.k.k1);
+    f.l2 = std::abs(f.k.k2);
+    lo = std::min({lo, f.l1, f.l2});
+    hi = std::max({hi, f.l1, f.l2});
+  }
+  if (o.raw_curvature) return;
+  // Normalised to [0, 1] by the mesh-wide range (the original implementation's choice).
+  const double range = hi - lo;
+  for (Frame& f : w.frame) {
+    f.l1 = range > 0 ? (f.l1 - lo) / range : 0.0;
+    f.l2 = range > 0 ? (f.l2 - lo) / range : 0.0;
+  }
+}
+
+// Equation 1's tangential move of one vertex (towards its ring centroid).
+Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const SmoothingOptions& o) {
+  const double k = o.k;
+  const Vec3 vec = mesh.position(v) - ring_centroid(mesh, v, o.scale_invariant_weights);
+  const Vec3 d = vec - vec.dot(f.k.normal) * f.k.normal;
+  return -(f.k.dir1.dot(d) * std::exp(-k * f.l1) * f.k.dir1 +
+           f.k.dir2.dot(d) * std::exp(-k * f.l2) * f.k.dir2);
+}
+
+// Parametric: the (u, v) step whose image best matches the move; domain-boundary vertices
+// keep their boundary coordinate(s), so corners stay put and sides slide along themselves.
+bool parametric_candidate(const ParametricSurface& s, const Mesh48& mesh, Vertex v,
+                          const Vec3& move, Vec2& uv, Vec3& position) {
+  const ParameterDomain dom = s.domain();
+  const Vec2 size = dom.max - dom.min;
+  const Vec2 old = mesh.uv(v);
+  bool fixed[2];
+  for (int a = 0; a < 2; ++a)
+    fixed[a] = std::abs(old[a] - dom.min[a]) < 1e-12 * size[a] ||
+               std::abs(old[a] - dom.max[a]) < 1e-12 * size[a];
+  if (fixed[0] && fixed[1]) return false;
+  const ParametricDerivatives dv = s.derivatives(old);
+  Eigen::Matrix<double, 3, 2> J;
+  J << dv.su, dv.sv;
+  Vec2 step = (J.transpose() * J).ldlt().solve(J.transpose() * move);
+  for (int a = 0; a < 2; ++a)
+    if (fixed[a]) step[a] = 0;
+  if (!step.allFinite()) return false;
+  uv = (old + step).cwiseMax(dom.min).cwiseMin(dom.max);
+  position = s.position(uv);
+  return true;
+}
+
+bool implicit_candidate(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
+                        Vec3& position, std::size_t& failures) {
+  if (mesh.is_boundary(v)) return false;
+  const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
+  if (!r.converged) {
+    ++failures;
+    return false;
+  }
+  position = r.point;
+  return true;
+}
+
+// A face is acceptable when it faces the same way as the surface and its smallest angle is
+// not pushed below the limit (or is no worse than it was).
+bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double limit) {
+  const auto v = mesh.vertices(f);
+  const Vec3 &a = w.position[v[0].idx], &b = w.position[v[1].idx], &c = w.position[v[2].idx];
+  const Vec3 surface_normal =
+      w.frame[v[0].idx].k.normal + w.frame[v[1].idx].k.normal + w.frame[v[2].idx].k.normal;
+  if ((b - a).cross(c - a).dot(surface_normal) <= 0) return false;
+  const double now = min_angle_deg(a, b, c);
+  if (now >= limit) return true;
+  return now >= min_angle_deg(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
+}
+
+// Undoes moves around unacceptable faces until none is left (Jacobi moves interact).
+std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit) {
+  std::size_t reverted = 0;
+  for (int round = 0; round < 8; ++round) {
+    std::size_t this_round = 0;
+    for (Face f : mesh.live_faces()) {
+      if (face_acceptable(mesh, w, f, limit)) continue;
+      for (Vertex v : mesh.vertices(f)) {
+        if (!w.moved[v.idx]) continue;
+        w.moved[v.idx] = 0;
+        w.position[v.idx] = mesh.position(v);
+        w.uv[v.idx] = mesh.uv(v);
+        ++this_round;
+      }
+    }
+    reverted += this_round;
+    if (this_round == 0) break;
+  }
+  return reverted;
+}
+
+SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const SmoothingOptions& o,
+                            Work& w) {
+  const std::size_t cap = mesh.vertex_capacity();
+  w.frame.assign(cap, Frame{});
+  w.position = mesh.positions();
+  w.uv = mesh.uvs();
+  w.moved.assign(cap, 0);
+  compute_frames(mesh, surface, o, w);
+  const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
+  const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
+  const auto n = static_cast<std::int64_t>(cap);
+  std::size_t failures = 0;
+#pragma omp parallel for schedule(dynamic, 512) reduction(+ : failures) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    const auto k = static_cast<std::size_t>(i);
+    if (!mesh.is_alive(v)) continue;
+    const Vec3 move = equation1_move(mesh, v, w.frame[k], o);
+    const bool ok = par ? parametric_candidate(*par, mesh, v, move, w.uv[k], w.position[k])
+                        : implicit_candidate(*imp, mesh, v, move, w.position[k], failures);
+    w.moved[k] = ok ? 1 : 0;
+  }
+  SmoothingResult r;
+  r.projection_failures = failures;
+  r.reverted = apply_guards(mesh, w, o.min_angle_deg);
+  for (std::size_t i = 0; i < cap; ++i) {
+    if (!w.moved[i]) continue;
+    mesh.position(Vertex(static_cast<std::uint32_t>(i))) = w.position[i];
+    mesh.uv(Vertex(static_cast<std::uint32_t>(i))) = w.uv[i];
+    ++r.moved;
+  }
+  return r;
+}
+
+}  // namespace
+
+SmoothingResult smooth_tangentially(Mesh48& mesh, const Surface& surface,
+                                    const SmoothingOptions& options) {
+  SmoothingResult total;
+  if (!options.enabled) return total;
+  Work work;
+  for (int it = 0; it < options.iterations; ++it) {
+    const SmoothingResult r = smooth_once(mesh, surface, options, work);
+    total.moved += r.moved;
+    total.reverted += r.reverted;
+    total.projection_failures += r.projection_failures;
+  }
+  return total;
+}
+
+}  // namespace dynamesh

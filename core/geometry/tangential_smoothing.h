@@ -1,0 +1,46 @@
+// Curvature-sensitive tangential smoothing: Equation 1 of de Goes et al. 2006 (Section 3.3).
+//
+// Each vertex p moves on its tangent plane towards the centroid c of its one-ring,
+//   v = p - c,  d = v - <v, n> n,
+//   p <- p - <u1, d> exp(-k l1) u1 - <u2, d> exp(-k l2) u2,
+// with u_i, l_i the principal directions and curvature magnitudes of S at p, and is then
+// brought back onto S. (The paper prints "p + ..." with v = p - c; the intent, and the
+// authors' code, is a move towards c.) Large k keeps vertices across ridges; k = 0 is plain
+// tangential Laplacian smoothing. By default l_i is |k_i| normalised to [0, 1] by the
+// mesh-wide range, as the original implementation does, so k means the same at any scale.
+//
+// Parametric surfaces move in (u, v) through the pseudo-inverse of the Jacobian [Su Sv];
+// implicit ones move in space and are projected by Newton steps. Guards: a move that flips a
+// triangle against the surface normal or pushes its smallest angle below min_angle_deg (and
+// below what it was) is undone for that vertex; parameter-domain boundary vertices slide only
+// along their side and the domain's corners stay put; other open-boundary vertices stay put.
+#pragma once
+
+#include <cstddef>
+
+#include "core/mesh/mesh48.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+struct SmoothingOptions {
+  bool enabled = true;
+  double k = 2.0;              // curvature sensitivity (the paper's constant k)
+  int iterations = 1;          // per step
+  bool raw_curvature = false;  // true: l_i = |k_i| in scene units (k then has units of length)
+  double min_angle_deg = 5.0;  // guard
+  // Centroid weights: inverse edge length (keeps the 4-8 mesh's grading; default) or
+  // uniform (the paper's plain one-ring centroid).
+  bool scale_invariant_weights = true;
+};
+
+struct SmoothingResult {
+  std::size_t moved = 0;     // vertex moves kept (summed over iterations)
+  std::size_t reverted = 0;  // moves undone by the guards
+  std::size_t projection_failures = 0;
+};
+
+SmoothingResult smooth_tangentially(Mesh48& mesh, const Surface& surface,
+                                    const SmoothingOptions& options);
+
+}  // namespace dynamesh

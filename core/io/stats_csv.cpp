@@ -1,0 +1,30 @@
+#include "core/io/stats_csv.h"
+
+namespace dynamesh {
+
+const char* StatsCsvWriter::header() {
+  return "step,time,triangles,vertices,splits,welds,total_splits,total_welds,max_error,"
+         "mean_error,samples,vertices_kept,projection_failures,budget_hit,seconds_project,"
+         "seconds_smooth,seconds_sample,seconds_weld,seconds_split,seconds_total";
+}
+
+StatsCsvWriter::StatsCsvWriter(const std::string& path) : file_(path) {
+  file_.stream().precision(10);
+  file_.stream() << header() << '\n';
+}
+
+void StatsCsvWriter::write(const StepStats& s, std::size_t total_splits, std::size_t total_welds) {
+  std::ostream& out = file_.stream();
+  out << s.step << ',' << s.time << ',' << s.triangles << ',' << s.vertices << ',' << s.splits
+      << ',' << s.welds << ',' << total_splits << ',' << total_welds << ',' << s.max_error << ','
+      << s.mean_error << ',' << s.samples << ',' << s.vertices_kept << ',' << s.projection_failures
+      << ',' << (s.budget_hit ? 1 : 0) << ',' << s.seconds.project << ',' << s.seconds.smooth << ','
+      << s.seconds.sample << ',' << s.seconds.weld << ',' << s.seconds.split << ','
+      << s.seconds.total << '\n';
+}
+
+void StatsCsvWriter::close() {
+  file_.commit();
+}
+
+}  // namespace dynamesh
