@@ -20,7 +20,7 @@ Scaled scaled(double kappa, const Vec3& p) {
   Scaled v;
   v.a = kappa * p.x();
   v.b = 1.0 - kappa * p.y();
-  v.s = std::hypot(v.a, v.b);
+  v.s = std::sqrt(v.a * v.a + v.b * v.b);  // b is near 1: no overflow, no need for hypot
   v.theta = std::atan2(v.a, v.b);
   return v;
 }

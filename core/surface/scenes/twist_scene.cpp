@@ -1,5 +1,6 @@
 #include "core/surface/scenes/twist_scene.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -76,12 +77,16 @@ Mat3 TwistScene::hessian(const Vec3& p) const {
 }
 
 Mesh48 TwistScene::base_mesh() const {
-  // The rest bar's bounding box with 6 x 2 x 2 quads. F0 + 1 is a norm (homogeneous of degree
-  // one), so the ray from the centre through a box vertex v meets the rest surface exactly at
-  // v / (F0(v) + 1); the twist then carries that point into place.
+  // The rest bar's bounding box with 2 x 2 quads across and at least 6 along the bar, more when
+  // twisted so that neighbouring cross-sections turn by at most 30 degrees (a quad of the
+  // section spans 90). F0 + 1 is a norm (homogeneous of degree one), so the ray from the centre
+  // through a box vertex v meets the rest surface exactly at v / (F0(v) + 1); the twist then
+  // carries that point into place.
+  const double turn = std::abs(twist_.rate()) * 2.0 * params_.h;
+  const int along = std::max(6, static_cast<int>(std::ceil(turn / (std::numbers::pi / 6.0))));
   const LpBar bar = bar_;
   const TwistMap twist = twist_;
-  return make_projected_box_mesh(*this, bar_.bounds(), {6, 2, 2}, [bar, twist](const Vec3& v) {
+  return make_projected_box_mesh(*this, bar_.bounds(), {along, 2, 2}, [bar, twist](const Vec3& v) {
     return twist.to_world(v / (bar.value(v) + 1.0));
   });
 }
