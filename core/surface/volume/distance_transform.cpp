@@ -1,0 +1,143 @@
+#include "core/surface/volume/distance_transform.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace dynamesh {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// Scratch for one line: input copy and the lower envelope (parabola sites v, boundaries z).
+struct LineScratch {
+  std::vector<float> f;
+  std::vector<std::uint32_t> feature;
+  std::vector<int> v;
+  std::vector<double> z;
+  void resize(int n) {
+    f.resize(n);
+    feature.resize(n);
+    v.resize(n);
+    z.resize(n + 1);
+  }
+};
+
+// Felzenszwalb-Huttenlocher 2012, Algorithm "DT(f)" in one dimension with sample spacing h:
+// d(q) = min_p h^2 (q - p)^2 + f(p). Sites with f = inf hold no parabola and are skipped.
+void envelope_1d(LineScratch& s, int n, double h, float* d, std::uint32_t* feature,
+                 std::size_t stride) {
+  for (int q = 0; q < n; ++q) {
+    s.f[q] = d[q * stride];
+    s.feature[q] = feature[q * stride];
+  }
+  const double h2 = h * h;
+  const auto intersection = [&](int p, int q) {
+    // Where the parabolas of sites p < q meet, in units of samples.
+    return ((s.f[q] + h2 * q * q) - (s.f[p] + h2 * p * p)) / (2.0 * h2 * (q - p));
+  };
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    if (s.f[q] == kInf) continue;
+    double at = -std::numeric_limits<double>::infinity();
+    while (k >= 0) {
+      at = intersection(s.v[k], q);
+      if (at > s.z[k]) break;
+      --k;
+      at = -std::numeric_limits<double>::infinity();
+    }
+    ++k;
+    s.v[k] = q;
+    s.z[k] = at;
+    s.z[k + 1] = std::numeric_limits<double>::infinity();
+  }
+  if (k < 0) return;  // no site on this line: leave it at infinity
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (s.z[k + 1] < q) ++k;
+    const int p = s.v[k];
+    d[q * stride] = static_cast<float>(h2 * (q - p) * (q - p) + s.f[p]);
+    feature[q * stride] = s.feature[p];
+  }
+}
+
+// One pass along `axis` over every line, in parallel.
+void pass(DistanceTransformResult& r, const VoxelGrid& grid, int axis, double h) {
+  const auto& d = grid.dims;
+  const std::size_t stride = axis == 0 ? 1 : axis == 1 ? d[0] : std::size_t(d[0]) * d[1];
+  const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;  // the two other axes
+  const auto lines = static_cast<std::ptrdiff_t>(std::size_t(d[a1]) * d[a2]);
+#pragma omp parallel
+  {
+    LineScratch scratch;
+    scratch.resize(d[axis]);
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t line = 0; line < lines; ++line) {
+      int ijk[3] = {0, 0, 0};
+      ijk[a1] = static_cast<int>(line % d[a1]);
+      ijk[a2] = static_cast<int>(line / d[a1]);
+      const std::size_t start = grid.index(ijk[0], ijk[1], ijk[2]);
+      envelope_1d(scratch, d[axis], h, r.squared.data() + start, r.nearest.data() + start, stride);
+    }
+  }
+}
+
+Vec3 voxel_of(const VoxelGrid& grid, std::uint32_t index) {
+  const std::size_t nx = grid.dims[0], nxy = nx * grid.dims[1];
+  return Vec3(double(index % nx), double((index / nx) % grid.dims[1]), double(index / nxy));
+}
+
+}  // namespace
+
+DistanceTransformResult distance_transform(const MaskVolume& mask, std::uint8_t target,
+                                           const ProgressCallback& progress,
+                                           std::string_view stage) {
+  const std::size_t n = mask.values.size();
+  DistanceTransformResult r;
+  r.squared.assign(n, kInf);
+  r.nearest.assign(n, kNone);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t v = 0; v < static_cast<std::ptrdiff_t>(n); ++v) {
+    if (mask.values[v] == target) {
+      r.squared[v] = 0.0f;
+      r.nearest[v] = static_cast<std::uint32_t>(v);
+    }
+  }
+  const Vec3 spacing = mask.grid.spacing();
+  for (int axis = 0; axis < 3; ++axis) {
+    pass(r, mask.grid, axis, spacing[axis]);
+    report(progress, stage, (axis + 1) / 3.0);
+  }
+  return r;
+}
+
+ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& progress) {
+  const ProgressCallback half = [&](std::string_view stage, double f) {
+    report(progress, stage, 0.5 * f);
+  };
+  const ProgressCallback second = [&](std::string_view stage, double f) {
+    report(progress, stage, 0.5 + 0.5 * f);
+  };
+  const DistanceTransformResult to_inside = distance_transform(mask, 1, half);
+  const DistanceTransformResult to_outside = distance_transform(mask, 0, second);
+  if (mask.values.empty() || to_inside.nearest[0] == kNone || to_outside.nearest[0] == kNone) {
+    throw std::invalid_argument("signed distance of an empty or full mask");
+  }
+  ScalarVolume result(mask.grid, 0.0f);
+  const VoxelGrid& grid = mask.grid;
+  const auto n = static_cast<std::ptrdiff_t>(mask.values.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t v = 0; v < n; ++v) {
+    const bool inside = mask.values[v] != 0;
+    const std::uint32_t f = inside ? to_outside.nearest[v] : to_inside.nearest[v];
+    const Vec3 u = voxel_of(grid, static_cast<std::uint32_t>(v)) - voxel_of(grid, f);
+    // The segment f -> x leaves f's cell (|s_i| <= 1/2) at lambda = min_i 1/(2 |u_i|).
+    const double lambda = 0.5 / u.cwiseAbs().maxCoeff();
+    const double distance = (1.0 - lambda) * (grid.linear * u).norm();
+    result.values[v] = static_cast<float>(inside ? -distance : distance);
+  }
+  return result;
+}
+
+}  // namespace dynamesh
