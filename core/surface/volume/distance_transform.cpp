@@ -1,8 +1,10 @@
 #include "core/surface/volume/distance_transform.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace dynamesh {
 namespace {
@@ -136,6 +138,66 @@ ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& pro
     const double lambda = 0.5 / u.cwiseAbs().maxCoeff();
     const double distance = (1.0 - lambda) * (grid.linear * u).norm();
     result.values[v] = static_cast<float>(inside ? -distance : distance);
+  }
+  return result;
+}
+
+namespace {
+
+// Newton foot point on {field = level} of an interface voxel, in world coordinates.
+Vec3 foot_point(const ScalarVolume& field, const Mat3& to_voxel_t, int i, int j, int k,
+                double level) {
+  const auto& d = field.grid.dims;
+  const auto diff = [&](int axis) {
+    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+    lo[axis] = std::max(lo[axis] - 1, 0);
+    hi[axis] = std::min(hi[axis] + 1, d[axis] - 1);
+    const double span = hi[axis] - lo[axis];
+    return span > 0 ? (field.at(hi[0], hi[1], hi[2]) - field.at(lo[0], lo[1], lo[2])) / span : 0.0;
+  };
+  const Vec3 g = to_voxel_t * Vec3(diff(0), diff(1), diff(2));
+  const Vec3 x = field.grid.to_world(Vec3(i, j, k));
+  const double g2 = g.squaredNorm();
+  if (g2 < 1e-30) return x;
+  return x - ((field.at(i, j, k) - level) / g2) * g;
+}
+
+}  // namespace
+
+ScalarVolume signed_distance_to_level(const ScalarVolume& field, double level,
+                                      const ProgressCallback& progress) {
+  const VoxelGrid& grid = field.grid;
+  const auto& d = grid.dims;
+  MaskVolume interface(grid, 0);
+  std::vector<Vec3> foot(field.values.size(), Vec3::Zero());
+  const Mat3 to_voxel_t = grid.linear.inverse().transpose();
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < d[2]; ++k)
+    for (int j = 0; j < d[1]; ++j)
+      for (int i = 0; i < d[0]; ++i) {
+        const bool in = field.at(i, j, k) > level;
+        const auto differs = [&](int a, int b, int c) {
+          return grid.contains(a, b, c) && (field.at(a, b, c) > level) != in;
+        };
+        if (differs(i - 1, j, k) || differs(i + 1, j, k) || differs(i, j - 1, k) ||
+            differs(i, j + 1, k) || differs(i, j, k - 1) || differs(i, j, k + 1)) {
+          const std::size_t v = grid.index(i, j, k);
+          interface.values[v] = 1;
+          foot[v] = foot_point(field, to_voxel_t, i, j, k, level);
+        }
+      }
+  const DistanceTransformResult nearest = distance_transform(interface, 1, progress);
+  if (nearest.nearest.empty() || nearest.nearest[0] == kNone) {
+    throw std::invalid_argument("signed distance: no voxel pair straddles the level " +
+                                std::to_string(level));
+  }
+  ScalarVolume result(grid, 0.0f);
+  const auto n = static_cast<std::ptrdiff_t>(field.values.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t v = 0; v < n; ++v) {
+    const Vec3 x = grid.to_world(voxel_of(grid, static_cast<std::uint32_t>(v)));
+    const double distance = (x - foot[nearest.nearest[v]]).norm();
+    result.values[v] = static_cast<float>(field.values[v] > level ? -distance : distance);
   }
   return result;
 }

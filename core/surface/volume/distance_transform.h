@@ -36,4 +36,16 @@ DistanceTransformResult distance_transform(const MaskVolume& mask, std::uint8_t 
 // passes through the face. Throws std::invalid_argument for an empty or full mask.
 ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& progress = {});
 
+// Signed distance in mm (negative inside, where field > level) to the level set
+// {field = level} of a smooth field, e.g. a Gaussian-smoothed mask, with sub-voxel accuracy:
+// every voxel that has a face neighbour across the level set gets its nearest point on it by
+// one Newton step, c = x - (f - level) grad f / |grad f|^2 (central differences, chain rule
+// through the grid's map); the feature transform of those voxels then gives every voxel q
+// its nearest such voxel v, and D(q) = +-|q - c_v|. Unlike the binary transform, the zero
+// level follows the smooth level set instead of the voxel staircase, so second derivatives
+// (curvature) of the interpolated D are meaningful. Throws std::invalid_argument when no
+// voxel pair straddles the level.
+ScalarVolume signed_distance_to_level(const ScalarVolume& field, double level,
+                                      const ProgressCallback& progress = {});
+
 }  // namespace dynamesh

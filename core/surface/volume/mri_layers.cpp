@@ -6,6 +6,7 @@
 
 #include "core/io/nifti_volume.h"
 #include "core/surface/volume/distance_transform.h"
+#include "core/surface/volume/gaussian_smoothing.h"
 
 namespace dynamesh {
 namespace {
@@ -29,31 +30,45 @@ MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallba
   NiftiVolume file =
       read_nifti_volume(options.volume_path, [&](double f) { report(progress, "reading", f); });
   const double read_seconds = seconds_since(start);
-  MriLayers layers = from_intensity(std::move(file.volume), options.segmentation, progress);
+  MriLayers layers = from_intensity(std::move(file.volume), options, progress);
   layers.timings_.read = read_seconds;
   layers.source_ = options.volume_path.string();
   return layers;
 }
 
-MriLayers MriLayers::from_intensity(ScalarVolume intensity, const SegmentationOptions& options,
+MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptions& options,
                                     const ProgressCallback& progress) {
   MriLayers layers;
+  layers.options_ = options;
   layers.source_ = "(memory)";
   layers.intensity_ = std::move(intensity);
   layers.sampler_ = TrilinearSampler(layers.intensity_.grid);
   const auto [lo, hi] =
       std::minmax_element(layers.intensity_.values.begin(), layers.intensity_.values.end());
   layers.range_ = Vec2(*lo, *hi);
-  layers.resegment(options, progress);
+  layers.resegment(progress);
   return layers;
 }
 
-void MriLayers::resegment(const SegmentationOptions& options, const ProgressCallback& progress) {
+void MriLayers::set_threshold(double threshold, const ProgressCallback& progress) {
+  options_.segmentation.threshold = threshold;
+  resegment(progress);
+}
+
+void MriLayers::resegment(const ProgressCallback& progress) {
   auto start = std::chrono::steady_clock::now();
-  segmentation_ = segment_volume(intensity_, options, progress);
+  segmentation_ = segment_volume(intensity_, options_.segmentation, progress);
   timings_.segment = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  distance_ = CubicBSplineField(signed_distance(segmentation_.mask, progress));
+  ScalarVolume indicator(segmentation_.mask.grid, 0.0f);
+  std::copy(segmentation_.mask.values.begin(), segmentation_.mask.values.end(),
+            indicator.values.begin());
+  indicator = gaussian_smoothed(indicator, options_.boundary_smoothing_mm);
+  report(progress, "distance transform", 0.1);
+  ScalarVolume distance = signed_distance_to_level(
+      indicator, 0.5, [&](std::string_view s, double f) { report(progress, s, 0.1 + 0.8 * f); });
+  distance_ = CubicBSplineField(gaussian_smoothed(distance, options_.distance_smoothing_mm));
+  report(progress, "distance transform", 1.0);
   timings_.distance = seconds_since(start);
   analyse_mask();
 }
