@@ -144,8 +144,14 @@ ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& pro
 
 namespace {
 
-// Newton foot point on {field = level} of an interface voxel, in world coordinates.
-Vec3 foot_point(const ScalarVolume& field, const Mat3& to_voxel_t, int i, int j, int k,
+// Where the level set passes near an interface voxel: the Newton foot point and the unit
+// normal there (world coordinates).
+struct Foot {
+  Vec3 point;
+  Vec3 normal;
+};
+
+Foot foot_point(const ScalarVolume& field, const Mat3& to_voxel_t, int i, int j, int k,
                 double level) {
   const auto& d = field.grid.dims;
   const auto diff = [&](int axis) {
@@ -158,8 +164,8 @@ Vec3 foot_point(const ScalarVolume& field, const Mat3& to_voxel_t, int i, int j,
   const Vec3 g = to_voxel_t * Vec3(diff(0), diff(1), diff(2));
   const Vec3 x = field.grid.to_world(Vec3(i, j, k));
   const double g2 = g.squaredNorm();
-  if (g2 < 1e-30) return x;
-  return x - ((field.at(i, j, k) - level) / g2) * g;
+  if (g2 < 1e-30) return {x, Vec3::Zero()};
+  return {x - ((field.at(i, j, k) - level) / g2) * g, g / std::sqrt(g2)};
 }
 
 }  // namespace
@@ -169,8 +175,8 @@ ScalarVolume signed_distance_to_level(const ScalarVolume& field, double level,
   const VoxelGrid& grid = field.grid;
   const auto& d = grid.dims;
   MaskVolume interface(grid, 0);
-  std::vector<Vec3> foot(field.values.size(), Vec3::Zero());
   const Mat3 to_voxel_t = grid.linear.inverse().transpose();
+  // Pass 1: mark the interface voxels (a face neighbour on the other side of the level).
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < d[2]; ++k)
     for (int j = 0; j < d[1]; ++j)
@@ -181,22 +187,51 @@ ScalarVolume signed_distance_to_level(const ScalarVolume& field, double level,
         };
         if (differs(i - 1, j, k) || differs(i + 1, j, k) || differs(i, j - 1, k) ||
             differs(i, j + 1, k) || differs(i, j, k - 1) || differs(i, j, k + 1)) {
-          const std::size_t v = grid.index(i, j, k);
-          interface.values[v] = 1;
-          foot[v] = foot_point(field, to_voxel_t, i, j, k, level);
+          interface.values[grid.index(i, j, k)] = 1;
         }
       }
-  const DistanceTransformResult nearest = distance_transform(interface, 1, progress);
-  if (nearest.nearest.empty() || nearest.nearest[0] == kNone) {
+  // Pass 2: foot points of the interface voxels only, addressed through a slot table.
+  std::vector<std::uint32_t> slot(field.values.size(), kNone);
+  std::vector<Foot> feet;
+  for (std::size_t v = 0; v < field.values.size(); ++v) {
+    if (!interface.values[v]) continue;
+    slot[v] = static_cast<std::uint32_t>(feet.size());
+    const Vec3 ijk = voxel_of(grid, static_cast<std::uint32_t>(v));
+    feet.push_back(foot_point(field, to_voxel_t, int(ijk[0]), int(ijk[1]), int(ijk[2]), level));
+  }
+  if (feet.empty()) {
     throw std::invalid_argument("signed distance: no voxel pair straddles the level " +
                                 std::to_string(level));
   }
+  const DistanceTransformResult nearest = distance_transform(interface, 1, progress);
   ScalarVolume result(grid, 0.0f);
   const auto n = static_cast<std::ptrdiff_t>(field.values.size());
+  const double band = 4.0 * grid.spacing().maxCoeff();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t v = 0; v < n; ++v) {
     const Vec3 x = grid.to_world(voxel_of(grid, static_cast<std::uint32_t>(v)));
-    const double distance = (x - foot[nearest.nearest[v]]).norm();
+    const Foot* best = &feet[slot[nearest.nearest[v]]];
+    double distance = (x - best->point).norm();
+    if (distance < band) {
+      // Near the level set the nearest interface voxel need not carry the nearest foot
+      // point: try those around it, then measure to the best one's tangent plane, which is
+      // exact to first order where the Euclidean distance to a sample of the surface is not
+      // (sqrt(delta^2 + s^2) for a foot at lateral offset s).
+      const Vec3 f = voxel_of(grid, nearest.nearest[v]);
+      for (int c = 0; c < 27; ++c) {
+        const int i = int(f[0]) + c % 3 - 1, j = int(f[1]) + (c / 3) % 3 - 1,
+                  k = int(f[2]) + c / 9 - 1;
+        if (!grid.contains(i, j, k)) continue;
+        const std::uint32_t w = slot[grid.index(i, j, k)];
+        if (w == kNone) continue;
+        const double dw = (x - feet[w].point).norm();
+        if (dw < distance) {
+          distance = dw;
+          best = &feet[w];
+        }
+      }
+      if (best->normal != Vec3::Zero()) distance = std::abs((x - best->point).dot(best->normal));
+    }
     result.values[v] = static_cast<float>(field.values[v] > level ? -distance : distance);
   }
   return result;

@@ -30,7 +30,7 @@ struct MriLayersOptions {
   // voxels: without the second blur the level sets' curvature is off by 90% on average
   // (staircase noise dominates second derivatives); with 1 mm and 1.5 mm it is off by 9%
   // on average, at the price of a bias of about sigma^2 / R in the value (0.2-0.4 mm here).
-  double boundary_smoothing_mm = 1.0;
+  double boundary_smoothing_mm = 1.5;
   double distance_smoothing_mm = 1.5;
 };
 
