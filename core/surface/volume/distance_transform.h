@@ -41,7 +41,9 @@ ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& pro
 // every voxel that has a face neighbour across the level set gets its nearest point on it by
 // one Newton step, c = x - (f - level) grad f / |grad f|^2 (central differences, chain rule
 // through the grid's map); the feature transform of those voxels then gives every voxel q
-// its nearest such voxel v, and D(q) = +-|q - c_v|. Unlike the binary transform, the zero
+// its nearest such voxel v, and D(q) = +-|q - c_v|; within 4 voxels of the level set the
+// foot points of v's 26 neighbours are tried too and the distance is taken to the best one's
+// tangent plane (exact to first order). Unlike the binary transform, the zero
 // level follows the smooth level set instead of the voxel staircase, so second derivatives
 // (curvature) of the interpolated D are meaningful. Throws std::invalid_argument when no
 // voxel pair straddles the level.
