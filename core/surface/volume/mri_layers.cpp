@@ -1,0 +1,106 @@
+#include "core/surface/volume/mri_layers.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "core/io/nifti_volume.h"
+#include "core/surface/volume/distance_transform.h"
+#include "core/surface/volume/gaussian_smoothing.h"
+
+namespace dynamesh {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double percentile(std::vector<float>& values, double fraction) {
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(fraction * (values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+}  // namespace
+
+MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  report(progress, "reading", 0.0);
+  NiftiVolume file =
+      read_nifti_volume(options.volume_path, [&](double f) { report(progress, "reading", f); });
+  const double read_seconds = seconds_since(start);
+  MriLayers layers = from_intensity(std::move(file.volume), options, progress);
+  layers.timings_.read = read_seconds;
+  layers.source_ = options.volume_path.string();
+  return layers;
+}
+
+MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptions& options,
+                                    const ProgressCallback& progress) {
+  MriLayers layers;
+  layers.options_ = options;
+  layers.source_ = "(memory)";
+  layers.intensity_ = std::move(intensity);
+  layers.sampler_ = TrilinearSampler(layers.intensity_.grid);
+  const auto [lo, hi] =
+      std::minmax_element(layers.intensity_.values.begin(), layers.intensity_.values.end());
+  layers.range_ = Vec2(*lo, *hi);
+  layers.resegment(progress);
+  return layers;
+}
+
+void MriLayers::set_threshold(double threshold, const ProgressCallback& progress) {
+  options_.segmentation.threshold = threshold;
+  resegment(progress);
+}
+
+void MriLayers::resegment(const ProgressCallback& progress) {
+  auto start = std::chrono::steady_clock::now();
+  segmentation_ = segment_volume(intensity_, options_.segmentation, progress);
+  timings_.segment = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  ScalarVolume indicator(segmentation_.mask.grid, 0.0f);
+  std::copy(segmentation_.mask.values.begin(), segmentation_.mask.values.end(),
+            indicator.values.begin());
+  indicator = gaussian_smoothed(indicator, options_.boundary_smoothing_mm);
+  report(progress, "distance transform", 0.1);
+  ScalarVolume distance = signed_distance_to_level(
+      indicator, 0.5, [&](std::string_view s, double f) { report(progress, s, 0.1 + 0.8 * f); });
+  distance_ = CubicBSplineField(gaussian_smoothed(distance, options_.distance_smoothing_mm));
+  report(progress, "distance transform", 1.0);
+  timings_.distance = seconds_since(start);
+  analyse_mask();
+}
+
+void MriLayers::analyse_mask() {
+  const MaskVolume& mask = segmentation_.mask;
+  const ScalarVolume& d = distance_.coefficients();
+  std::vector<float> inside;
+  inside.reserve(segmentation_.voxels);
+  mask_bounds_ = Box3();
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  std::size_t deepest = 0;
+  for (int k = 0; k < mask.grid.dims[2]; ++k)
+    for (int j = 0; j < mask.grid.dims[1]; ++j)
+      for (int i = 0; i < mask.grid.dims[0]; ++i) {
+        const std::size_t v = mask.grid.index(i, j, k);
+        if (!mask.values[v]) continue;
+        if (intensity_.values[v] > range_[0]) inside.push_back(intensity_.values[v]);
+        lo = lo.cwiseMin(Vec3(i, j, k));
+        hi = hi.cwiseMax(Vec3(i, j, k));
+        if (d.values[v] < d.values[deepest]) deepest = v;
+      }
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? hi[0] + 0.5 : lo[0] - 0.5, (c & 2) ? hi[1] + 0.5 : lo[1] - 0.5,
+                      (c & 4) ? hi[2] + 0.5 : lo[2] - 0.5);
+    mask_bounds_.extend(mask.grid.to_world(corner));
+  }
+  const std::size_t nx = mask.grid.dims[0], nxy = nx * mask.grid.dims[1];
+  deepest_point_ = mask.grid.to_world(Vec3(
+      double(deepest % nx), double((deepest / nx) % mask.grid.dims[1]), double(deepest / nxy)));
+  max_depth_ = -distance_.value(deepest_point_);
+  window_ = Vec2(percentile(inside, 0.01), percentile(inside, 0.99));
+}
+
+}  // namespace dynamesh

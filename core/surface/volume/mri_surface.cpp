@@ -1,0 +1,114 @@
+#include "core/surface/volume/mri_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/surface/box_base_mesh.h"
+#include "core/surface/parameter_table.h"
+
+namespace dynamesh {
+namespace {
+
+constexpr double kBoundsMargin = 2.0;   // mm
+constexpr double kBaseQuadSize = 40.0;  // mm, about one base quad per 4 cm of brain
+
+}  // namespace
+
+MriSurface::MriSurface(MriLayers layers, double depth_max, ProgressCallback progress)
+    : layers_(std::move(layers)), depth_max_(depth_max), progress_(std::move(progress)) {
+  const double limit = std::max(0.0, layers_.max_depth() - 1.0);
+  if (!(depth_max >= 0.0 && depth_max <= limit)) {
+    throw std::invalid_argument("mri: depth_max " + std::to_string(depth_max) + " outside [0, " +
+                                std::to_string(limit) + "] (the brain's deepest point lies " +
+                                std::to_string(layers_.max_depth()) + " mm deep)");
+  }
+}
+
+std::vector<SurfaceParameter> MriSurface::parameters() const {
+  return {{"depth_max", depth_max_, 0.0, std::max(0.0, layers_.max_depth() - 1.0),
+           "depth in mm of the layer at t = 1 below the brain's surface"},
+          {"threshold", layers_.options().segmentation.threshold, 0.0, layers_.intensity_range()[1],
+           "segmentation intensity threshold; 0 means Otsu's (currently " +
+               std::to_string(layers_.segmentation().threshold) + ")"}};
+}
+
+void MriSurface::set_parameter(const std::string& name, double value) {
+  const std::vector<SurfaceParameter> list = parameters();
+  for (const SurfaceParameter& p : list) {
+    if (p.name != name) continue;
+    check_parameter_value(kName, p, value);
+    if (name == "depth_max") {
+      depth_max_ = value;
+    } else {
+      layers_.set_threshold(value, progress_);
+      depth_max_ = std::min(depth_max_, std::max(0.0, layers_.max_depth() - 1.0));
+    }
+    return;
+  }
+  throw std::invalid_argument(unknown_parameter_message(kName, name, list));
+}
+
+Box3 MriSurface::bounds() const {
+  Box3 box = layers_.mask_bounds();
+  box.min -= Vec3::Constant(kBoundsMargin);
+  box.max += Vec3::Constant(kBoundsMargin);
+  return box;
+}
+
+Mat3 MriSurface::hessian(const Vec3& p) const {
+  Vec3 g;
+  Mat3 h;
+  layers_.distance_hessian(p, g, h);
+  return h;
+}
+
+// Sphere tracing (J. Hart, "Sphere tracing", The Visual Computer 12, 1996) from inside: D is
+// close to a distance, so steps of 0.8 |F| cannot jump over the layer; then bisection.
+Vec3 MriSurface::first_crossing(const Vec3& origin, const Vec3& direction) const {
+  const double far = bounds().diagonal();
+  double inside = 0.0, s = 0.0;
+  while (s < far) {
+    const double f = value(origin + s * direction);
+    if (f > 0.0) break;
+    inside = s;
+    s += std::max(0.8 * -f, 0.1);
+  }
+  double outside = std::min(s, far);
+  for (int it = 0; it < 50; ++it) {
+    const double mid = 0.5 * (inside + outside);
+    (value(origin + mid * direction) > 0.0 ? outside : inside) = mid;
+  }
+  return origin + outside * direction;
+}
+
+Mesh48 MriSurface::base_mesh() const {
+  const Box3 box = layers_.mask_bounds();
+  std::array<int, 3> counts;
+  for (int i = 0; i < 3; ++i) {
+    counts[i] = std::clamp(static_cast<int>(std::lround(box.size()[i] / kBaseQuadSize)), 2, 8);
+  }
+  const Vec3 centre = layers_.deepest_point();
+  // The box is centred on the deepest point so the rays fan out evenly.
+  Box3 around;
+  around.extend(centre - 0.5 * box.size());
+  around.extend(centre + 0.5 * box.size());
+  return make_projected_box_mesh(*this, around, counts, [&](const Vec3& corner) {
+    return first_crossing(centre, (corner - centre).normalized());
+  });
+}
+
+std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
+  if (!std::isfinite(options.threshold) || !std::isfinite(options.depth_max) ||
+      options.depth_max < 0.0) {
+    throw std::invalid_argument("mri: threshold and depth_max must be finite, depth_max >= 0");
+  }
+  MriLayersOptions layer_options;
+  layer_options.volume_path = options.volume_path;
+  layer_options.segmentation.threshold = options.threshold;
+  layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
+  return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
+                                      options.depth_max, options.progress);
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,74 @@
+// Scene `mri` (SCENES.md; de Goes et al. 2006, Section 4.5): isolayers of a brain in an MR
+// volume, F(p, t) = D(p) + d(t) with D the smooth signed distance to the segmented brain's
+// boundary (MriLayers) and d(t) = depth_max * t the depth of the layer below it. The layers
+// are coloured by the MR intensity (intensity_at), as a physician inspects them for
+// dysplastic lesions (curvilinear reformatting).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/surface/surface.h"
+#include "core/surface/volume/mri_layers.h"
+
+namespace dynamesh {
+
+struct MriOptions {
+  std::filesystem::path volume_path = kDefaultMriVolume;
+  double threshold = 0.0;   // segmentation threshold (intensity); 0 or negative: Otsu
+  double depth_max = 15.0;  // mm, depth of the layer at t = 1
+  double closing_radius_mm = 5.0;
+  ProgressCallback progress;  // loading / segmenting / distance transform, also on re-segmenting
+};
+
+class MriSurface final : public ImplicitSurface {
+ public:
+  static constexpr const char* kName = "mri";
+  static constexpr const char* kDescription =
+      "brain isolayers at depth depth_max * t below the surface of a segmented MR volume "
+      "(paper 4.5)";
+
+  MriSurface(MriLayers layers, double depth_max, ProgressCallback progress = {});
+
+  std::string name() const override { return kName; }
+  // depth_max in [0, max_depth - 1] mm; threshold in [0, max intensity] (0: Otsu; changing
+  // it re-segments and recomputes the distance, about a second).
+  std::vector<SurfaceParameter> parameters() const override;
+  void set_parameter(const std::string& name, double value) override;
+  // The mask's box grown by 2 mm: every layer lies inside it.
+  Box3 bounds() const override;
+  // A box of quads around the brain, each vertex moved along the ray from the deepest point
+  // to the first crossing of the current layer (so the base mesh is a closed sphere-like
+  // net even where the layer is not star-shaped), then Newton-projected.
+  Mesh48 base_mesh() const override;
+
+  double value(const Vec3& p) const override { return layers_.distance(p) + depth(); }
+  double value_gradient(const Vec3& p, Vec3& gradient) const override {
+    return layers_.distance_gradient(p, gradient) + depth();
+  }
+  Mat3 hessian(const Vec3& p) const override;
+
+  double depth() const { return depth_max_ * time(); }
+  double depth_max() const { return depth_max_; }
+  // MR intensity at a world point (trilinear) and its range / display window.
+  double intensity_at(const Vec3& p) const { return layers_.intensity_at(p); }
+  Vec2 intensity_range() const { return layers_.intensity_range(); }
+  Vec2 intensity_window() const { return layers_.intensity_window(); }
+  const MriLayers& layers() const { return layers_; }
+
+ private:
+  Vec3 first_crossing(const Vec3& origin, const Vec3& direction) const;
+
+  MriLayers layers_;
+  double depth_max_;
+  ProgressCallback progress_;
+};
+
+// Reads, segments and transforms the volume (progress through options.progress); throws
+// std::runtime_error for an unreadable file, std::invalid_argument for bad options or a
+// volume where nothing is segmented.
+std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options = {});
+
+}  // namespace dynamesh

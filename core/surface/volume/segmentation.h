@@ -1,0 +1,40 @@
+// Segmentation of a brain-extracted MR volume into one solid brain mask (SCENES.md, mri,
+// step 1): light Gaussian smoothing, a threshold (Otsu's by default), the largest
+// face-connected component, an optional morphological closing (the brain's envelope, which
+// bridges sulci so that layers below it are smooth "peels" as in curvilinear reformatting),
+// and the holes filled.
+#pragma once
+
+#include <cstddef>
+
+#include "core/surface/volume/progress.h"
+#include "core/surface/volume/voxel_grid.h"
+
+namespace dynamesh {
+
+struct SegmentationOptions {
+  double smoothing_sigma_mm = 1.0;  // Gaussian before thresholding; <= 0: none
+  double threshold = 0.0;           // intensity; <= 0 means Otsu's threshold
+  double closing_radius_mm = 0.0;   // ball radius of the closing; <= 0: none
+};
+
+struct Segmentation {
+  MaskVolume mask;
+  double threshold = 0.0;        // the threshold used
+  bool otsu = false;             // whether it was Otsu's
+  std::size_t components = 0;    // face-connected components above the threshold
+  std::size_t holes_filled = 0;  // voxels
+  std::size_t voxels = 0;        // in the final mask
+  double volume_ml() const { return voxels * mask.grid.voxel_volume() / 1000.0; }
+};
+
+// Throws std::invalid_argument when nothing lies above the threshold.
+Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOptions& options,
+                            const ProgressCallback& progress = {});
+
+// Morphological closing of `mask` by a ball of `radius_mm` (dilation then erosion, both by
+// thresholding exact Euclidean distance transforms). Voxels outside the grid count as
+// background for the erosion only as far as the grid reaches.
+void close_mask(MaskVolume& mask, double radius_mm);
+
+}  // namespace dynamesh
