@@ -1,7 +1,7 @@
 // Small fixed-size linear algebra types used throughout the engine (Eigen, double precision).
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Dense>
 
 namespace dynamesh {
 

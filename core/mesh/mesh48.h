@@ -178,6 +178,7 @@ class Mesh48 {
   void link(std::uint32_t face_a, int local_a, std::uint32_t halfedge_b);
   void bisect_half(Bisection& half, std::uint32_t m);
   Vertex split_diamond(Face f);
+  int collect_weld_star(Vertex v, std::array<Corner, 4>& star) const;
   bool weld_star(Vertex v, const std::array<Corner, 4>& star, int count);
   void notify_split(const DiamondChange& change);
   void notify_weld(const DiamondChange& change);

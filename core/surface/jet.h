@@ -1,0 +1,34 @@
+// Second-order jets (value, first and second derivatives) of a scalar field and of a map of
+// space, and their composition by the chain rule. The deformed implicit scenes are
+// F(p) = F0(q(p)) with a rest shape F0 and a map q from world to rest space (SCENES.md), so
+//   grad F = J^T grad F0,   Hess F = J^T (Hess F0) J + sum_k dF0/dq_k Hess q_k.
+#pragma once
+
+#include <array>
+
+#include "core/geometry/vector_types.h"
+
+namespace dynamesh {
+
+struct ScalarJet {
+  double value = 0.0;
+  Vec3 gradient{Vec3::Zero()};
+  Mat3 hessian{Mat3::Zero()};
+};
+
+struct MapJet {
+  Vec3 value{Vec3::Zero()};
+  Mat3 jacobian{Mat3::Identity()};  // jacobian(i, j) = d q_i / d p_j
+  std::array<Mat3, 3> hessians{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // Hess q_i
+};
+
+inline ScalarJet compose(const ScalarJet& outer, const MapJet& inner) {
+  ScalarJet r;
+  r.value = outer.value;
+  r.gradient = inner.jacobian.transpose() * outer.gradient;
+  r.hessian = inner.jacobian.transpose() * outer.hessian * inner.jacobian;
+  for (int k = 0; k < 3; ++k) r.hessian += outer.gradient(k) * inner.hessians[k];
+  return r;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,59 @@
+#include "core/surface/projection.h"
+
+#include <cmath>
+
+namespace dynamesh {
+
+namespace {
+
+// |F| / |grad F| is the distance to the surface to first order: a tolerance in length units
+// that does not depend on how F is scaled (twist's F is dimensionless, sphere's a distance).
+bool close_enough(double f, double gnorm, double tolerance_length) {
+  return std::abs(f) <= tolerance_length * gnorm;
+}
+
+}  // namespace
+
+ProjectionResult project_to_surface(const ImplicitSurface& surface, const Vec3& x,
+                                    const ProjectionOptions& options) {
+  const double scale = surface.length_scale();
+  const double tolerance_length = options.tolerance * scale;
+  ProjectionResult result;
+  result.point = x;
+  Vec3 g;
+  double f = surface.value_gradient(x, g);
+  result.residual = std::abs(f);
+  if (!std::isfinite(f)) return result;
+  for (;;) {
+    const double g2 = g.squaredNorm();
+    const double gnorm = std::sqrt(g2);
+    if (!std::isfinite(g2) || !(gnorm > 0.0)) return result;  // nowhere to go
+    if (close_enough(f, gnorm, tolerance_length)) {
+      result.converged = true;
+      return result;
+    }
+    if (result.iterations >= options.max_iterations) return result;
+    Vec3 step = (f / g2) * g;
+    // A nearly flat F proposes huge steps; no projection should cross the whole scene.
+    const double length = std::abs(f) / gnorm;
+    if (length > scale) step *= scale / length;
+    Vec3 next = result.point - step;
+    Vec3 g_next;
+    double f_next = surface.value_gradient(next, g_next);
+    int halvings = 0;
+    while (!(std::abs(f_next) < std::abs(f)) && halvings < options.max_halvings) {
+      step *= 0.5;
+      next = result.point - step;
+      f_next = surface.value_gradient(next, g_next);
+      ++halvings;
+    }
+    if (!(std::abs(f_next) < std::abs(f))) return result;  // no descent along the gradient
+    ++result.iterations;
+    result.point = next;
+    f = f_next;
+    g = g_next;
+    result.residual = std::abs(f);
+  }
+}
+
+}  // namespace dynamesh

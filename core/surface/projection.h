@@ -1,0 +1,34 @@
+// Newton projection onto an implicit surface F = 0 (SCENES.md, "Error of a mesh"; the normal
+// correction of de Goes et al. 2006, Section 3.3):
+//   x <- x - F(x) grad F(x) / |grad F(x)|^2
+// until the first-order distance |F| / |grad F| is below tolerance * length_scale(). Each step is
+// safeguarded: a vanishing or non-finite gradient stops the iteration (not converged), a step
+// longer than the scene is shortened, and a step that makes |F| grow is halved until it does not.
+// The result always says whether it converged; it is never garbage silently.
+#pragma once
+
+#include "core/geometry/vector_types.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+struct ProjectionOptions {
+  // Relative to the surface's length_scale(); 1e-10 is SCENES.md's |F| < 1e-10 for a signed
+  // distance F on a scene of size about 1, and scale-free otherwise.
+  double tolerance = 1e-10;
+  int max_iterations = 64;
+  int max_halvings = 30;
+};
+
+struct ProjectionResult {
+  Vec3 point{Vec3::Zero()};  // the last iterate (the start point if no step was taken)
+  bool converged = false;
+  int iterations = 0;     // Newton steps taken
+  double residual = 0.0;  // |F(point)|
+};
+
+// Thread-safe (only const surface evaluations) and allocation-free.
+ProjectionResult project_to_surface(const ImplicitSurface& surface, const Vec3& x,
+                                    const ProjectionOptions& options = {});
+
+}  // namespace dynamesh

@@ -1,0 +1,165 @@
+#include "core/surface/scene_registry.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/surface/scenes/capsule_bend_scene.h"
+#include "core/surface/scenes/sinc_scene.h"
+#include "core/surface/scenes/sphere_scene.h"
+#include "core/surface/scenes/twist_scene.h"
+
+namespace dynamesh {
+
+namespace {
+
+struct Entry {
+  std::string name;
+  std::string description;
+  SceneFactory factory;
+  bool parameters_known_without_options = true;
+};
+
+void reject_text_options(const std::string& scene, const TextOptions& options) {
+  if (options.empty()) return;
+  throw std::invalid_argument(scene + ": takes no option '" + options.front().first +
+                              "' (it only has numeric parameters, set with --param KEY=VALUE)");
+}
+
+template <class Scene>
+Entry builtin() {
+  return {Scene::kName, Scene::kDescription, [](const TextOptions& options) {
+            reject_text_options(Scene::kName, options);
+            return std::unique_ptr<Surface>(std::make_unique<Scene>());
+          }};
+}
+
+// A static library drops object files nobody references, so the built-in scenes are listed
+// here rather than registering themselves from their own files.
+struct Catalogue {
+  std::mutex mutex;
+  std::vector<Entry> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
+                             builtin<SincScene>(), builtin<TwistScene>()};
+};
+
+Catalogue& catalogue() {
+  static Catalogue c;
+  return c;
+}
+
+std::string valid_names(const std::vector<Entry>& entries) {
+  std::string list;
+  for (const Entry& e : entries) list += (list.empty() ? "" : ", ") + e.name;
+  return list;
+}
+
+// The last value given for each key wins, as on a command line.
+ParameterOverrides last_value_per_key(const ParameterOverrides& overrides) {
+  ParameterOverrides unique;
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
+    bool seen = false;
+    for (const auto& u : unique) seen = seen || u.first == it->first;
+    if (!seen) unique.insert(unique.begin(), *it);
+  }
+  return unique;
+}
+
+// Applies every override; one rejected only because of a value another override changes is
+// retried after the others. Throws the first rejection that no order can fix.
+void apply_overrides(Surface& scene, const ParameterOverrides& overrides) {
+  ParameterOverrides pending = last_value_per_key(overrides);
+  while (!pending.empty()) {
+    ParameterOverrides failed;
+    std::string first_error;
+    for (const auto& [key, value] : pending) {
+      try {
+        scene.set_parameter(key, value);
+      } catch (const std::invalid_argument& e) {
+        if (failed.empty()) first_error = e.what();
+        failed.emplace_back(key, value);
+      }
+    }
+    if (failed.size() == pending.size()) throw std::invalid_argument(first_error);
+    pending = std::move(failed);
+  }
+}
+
+}  // namespace
+
+void register_scene(const std::string& name, const std::string& description, SceneFactory factory,
+                    bool parameters_known_without_options) {
+  Catalogue& c = catalogue();
+  const std::lock_guard lock(c.mutex);
+  for (const Entry& e : c.entries) {
+    if (e.name == name) throw std::invalid_argument("scene '" + name + "' is already registered");
+  }
+  c.entries.push_back({name, description, std::move(factory), parameters_known_without_options});
+}
+
+std::vector<SceneInfo> list_scenes() {
+  std::vector<Entry> entries;
+  {
+    Catalogue& c = catalogue();
+    const std::lock_guard lock(c.mutex);
+    entries = c.entries;
+  }
+  std::vector<SceneInfo> infos;
+  for (const Entry& e : entries) {
+    SceneInfo info{e.name, e.description, {}};
+    if (e.parameters_known_without_options) info.parameters = e.factory({})->parameters();
+    infos.push_back(std::move(info));
+  }
+  return infos;
+}
+
+std::unique_ptr<Surface> make_scene(const std::string& name, const ParameterOverrides& overrides,
+                                    const TextOptions& text_options) {
+  SceneFactory factory;
+  {
+    Catalogue& c = catalogue();
+    const std::lock_guard lock(c.mutex);
+    for (const Entry& e : c.entries) {
+      if (e.name == name) factory = e.factory;
+    }
+    if (!factory) {
+      throw std::invalid_argument("unknown scene '" + name +
+                                  "'; valid scenes are: " + valid_names(c.entries));
+    }
+  }
+  std::unique_ptr<Surface> scene = factory(text_options);
+  apply_overrides(*scene, overrides);
+  scene->set_time(0.0);
+  return scene;
+}
+
+std::pair<std::string, double> parse_parameter_override(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  const std::string key = text.substr(0, eq);
+  const std::string value = eq == std::string::npos ? "" : text.substr(eq + 1);
+  char* end = nullptr;
+  const double number = value.empty() ? 0.0 : std::strtod(value.c_str(), &end);
+  if (key.empty() || value.empty() || *end != '\0' || !std::isfinite(number)) {
+    throw std::invalid_argument(
+        "expected KEY=VALUE with a finite number VALUE (e.g. R0=0.8), got '" + text + "'");
+  }
+  return {key, number};
+}
+
+std::string scene_help() {
+  std::ostringstream out;
+  for (const SceneInfo& s : list_scenes()) {
+    out << std::left << std::setw(14) << s.name << s.description << '\n';
+    for (const SurfaceParameter& p : s.parameters) {
+      std::ostringstream range;
+      range << '[' << p.min << ", " << p.max << ']';
+      out << "    " << std::left << std::setw(7) << p.name << std::setw(10) << p.value
+          << std::setw(16) << range.str() << p.description << '\n';
+    }
+  }
+  return out.str();
+}
+
+}  // namespace dynamesh

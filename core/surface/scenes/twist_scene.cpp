@@ -1,0 +1,89 @@
+#include "core/surface/scenes/twist_scene.h"
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "core/surface/box_base_mesh.h"
+#include "core/surface/parameter_table.h"
+
+namespace dynamesh {
+
+namespace {
+
+using P = TwistScene::Params;
+const std::array<ParameterSpec<P>, 5> kSpecs{{
+    {"h", &P::h, 0.05, 20.0, "half-length of the bar along x"},
+    {"r", &P::r, 0.01, 5.0, "half-width of the cross-section |y|^p + |z|^p = r^p"},
+    {"p", &P::p, 2.0, 32.0, "exponent of the cross-section (2: round, large: square)"},
+    {"s", &P::s, 2.0, 64.0, "exponent joining sides and ends (large: flat ends, sharp rims)"},
+    {"turns", &P::turns, -10.0, 10.0, "turns of the twist over the whole bar at t = 1"},
+}};
+
+}  // namespace
+
+TwistScene::TwistScene() {
+  update();
+}
+
+void TwistScene::set_time(double t) {
+  Surface::set_time(t);
+  update();
+}
+
+void TwistScene::update() {
+  bar_ = LpBar{params_.h, params_.r, params_.p, params_.s};
+  twist_ = TwistMap(time() * params_.turns * std::numbers::pi / params_.h);
+  scale_ = bounds().diagonal();
+}
+
+std::vector<SurfaceParameter> TwistScene::parameters() const {
+  return describe_parameters(kSpecs, params_);
+}
+
+void TwistScene::set_parameter(const std::string& name, double value) {
+  assign_parameter(kName, kSpecs, params_, name, value);
+  update();
+}
+
+Box3 TwistScene::bounds() const {
+  if (twist_.rate() == 0.0) return bar_.bounds();
+  // A turned cross-section stays within the disc through the corners of the Lp ball, of
+  // radius r 2^(1/2 - 1/p) (p >= 2).
+  const double reach = params_.r * std::pow(2.0, 0.5 - 1.0 / params_.p);
+  Box3 box;
+  box.extend(Vec3(-params_.h, -reach, -reach));
+  box.extend(Vec3(params_.h, reach, reach));
+  return box;
+}
+
+double TwistScene::value(const Vec3& p) const {
+  return bar_.value(twist_.to_rest(p));
+}
+
+double TwistScene::value_gradient(const Vec3& p, Vec3& gradient) const {
+  Mat3 J;
+  const Vec3 q = twist_.to_rest(p, J);
+  Vec3 g0;
+  const double f = bar_.value_gradient(q, g0);
+  gradient = J.transpose() * g0;
+  return f;
+}
+
+Mat3 TwistScene::hessian(const Vec3& p) const {
+  const MapJet map = twist_.to_rest_jet(p);
+  return compose(bar_.jet(map.value), map).hessian;
+}
+
+Mesh48 TwistScene::base_mesh() const {
+  // The rest bar's bounding box with 6 x 2 x 2 quads. F0 + 1 is a norm (homogeneous of degree
+  // one), so the ray from the centre through a box vertex v meets the rest surface exactly at
+  // v / (F0(v) + 1); the twist then carries that point into place.
+  const LpBar bar = bar_;
+  const TwistMap twist = twist_;
+  return make_projected_box_mesh(*this, bar_.bounds(), {6, 2, 2}, [bar, twist](const Vec3& v) {
+    return twist.to_world(v / (bar.value(v) + 1.0));
+  });
+}
+
+}  // namespace dynamesh

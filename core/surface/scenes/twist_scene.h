@@ -1,0 +1,56 @@
+// Scene `twist` (SCENES.md; de Goes et al. 2006, Section 4.4): a bar with an Lp cross-section
+// and superelliptic ends (shapes/lp_bar.h), twisted about x at the rate
+// tau(t) = t * turns * 2 pi / (2h) radians per unit length (turns = 1.5: one and a half turns
+// over the bar at t = 1). F(p) = F0(q(p)) with the twist p -> q (deformations/twist_map.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/surface/deformations/twist_map.h"
+#include "core/surface/shapes/lp_bar.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+class TwistScene final : public ImplicitSurface {
+ public:
+  static constexpr const char* kName = "twist";
+  static constexpr const char* kDescription =
+      "implicit bar of Lp cross-section twisted by up to `turns` turns (paper 4.4)";
+
+  struct Params {
+    double h = 1.5;
+    double r = 0.4;
+    double p = 4.0;
+    double s = 8.0;
+    double turns = 1.5;
+  };
+
+  TwistScene();
+
+  std::string name() const override { return kName; }
+  void set_time(double t) override;
+  std::vector<SurfaceParameter> parameters() const override;
+  void set_parameter(const std::string& name, double value) override;
+  Box3 bounds() const override;
+  double length_scale() const override { return scale_; }
+  Mesh48 base_mesh() const override;
+
+  double value(const Vec3& p) const override;
+  double value_gradient(const Vec3& p, Vec3& gradient) const override;
+  Mat3 hessian(const Vec3& p) const override;
+
+  const LpBar& rest_shape() const { return bar_; }
+  const TwistMap& twist() const { return twist_; }
+
+ private:
+  void update();
+
+  Params params_;
+  LpBar bar_;
+  TwistMap twist_;
+  double scale_ = 1.0;
+};
+
+}  // namespace dynamesh

@@ -1,0 +1,114 @@
+// Default implementations of the Surface interface (surface.h): parameter errors, finite
+// difference derivatives for surfaces without closed forms, and principal curvatures from
+// derivatives (fundamental forms for parametric surfaces, Goldman 2005 for implicit ones).
+#include "core/surface/surface.h"
+
+#include <stdexcept>
+
+#include "core/surface/parameter_table.h"
+#include "core/surface/principal_frame.h"
+
+namespace dynamesh {
+
+// ---- Surface ------------------------------------------------------------------------------
+
+void Surface::set_parameter(const std::string& name, double value) {
+  const std::vector<SurfaceParameter> list = parameters();
+  for (const SurfaceParameter& p : list) {
+    if (p.name != name) continue;
+    check_parameter_value(this->name(), p, value);
+    throw std::invalid_argument(this->name() + ": parameter '" + name + "' is read-only");
+  }
+  throw std::invalid_argument(unknown_parameter_message(this->name(), name, list));
+}
+
+// ---- ParametricSurface ----------------------------------------------------------------------
+
+ParametricDerivatives ParametricSurface::derivatives(const Vec2& uv) const {
+  // Central differences; steps near the optimum for double precision (eps^(1/3) for first,
+  // eps^(1/4) for second derivatives) relative to the domain's size. The stencil may reach
+  // slightly outside the domain: position() must accept such points.
+  const Vec2 size = domain().max - domain().min;
+  const double hu = 1e-5 * size.x(), hv = 1e-5 * size.y();
+  const double Hu = 1e-4 * size.x(), Hv = 1e-4 * size.y();
+  const Vec2 du(hu, 0.0), dv(0.0, hv), Du(Hu, 0.0), Dv(0.0, Hv);
+  ParametricDerivatives d;
+  d.s = position(uv);
+  d.su = (position(uv + du) - position(uv - du)) / (2.0 * hu);
+  d.sv = (position(uv + dv) - position(uv - dv)) / (2.0 * hv);
+  d.suu = (position(uv + Du) - 2.0 * d.s + position(uv - Du)) / (Hu * Hu);
+  d.svv = (position(uv + Dv) - 2.0 * d.s + position(uv - Dv)) / (Hv * Hv);
+  d.suv = (position(uv + Du + Dv) - position(uv + Du - Dv) - position(uv - Du + Dv) +
+           position(uv - Du - Dv)) /
+          (4.0 * Hu * Hv);
+  return d;
+}
+
+Vec3 ParametricSurface::normal(const Vec2& uv) const {
+  const ParametricDerivatives d = derivatives(uv);
+  return d.su.cross(d.sv).normalized();
+}
+
+PrincipalCurvatures ParametricSurface::curvatures(const Vec2& uv) const {
+  const ParametricDerivatives d = derivatives(uv);
+  const Vec3 n = d.su.cross(d.sv).normalized();
+  // Orthonormal frame e1 = Su/|Su|, e2 = n x e1; [Su Sv] = [e1 e2] R with R upper triangular.
+  const Vec3 e1 = d.su.normalized();
+  const Vec3 e2 = n.cross(e1);
+  Mat2 R;
+  R << d.su.norm(), d.sv.dot(e1), 0.0, d.sv.dot(e2);
+  // Second fundamental form; the shape operator in the frame is R^-T II R^-1, negated so that
+  // a sphere with outward normal (where <Suu, n> < 0) has positive curvature.
+  Mat2 II;
+  II << d.suu.dot(n), d.suv.dot(n), d.suv.dot(n), d.svv.dot(n);
+  const Mat2 Rinv = R.inverse();
+  const Mat2 shape = -(Rinv.transpose() * II * Rinv);
+  return principal_curvatures_in_frame(shape, e1, e2, n);
+}
+
+// ---- ImplicitSurface ------------------------------------------------------------------------
+
+double ImplicitSurface::value_gradient(const Vec3& p, Vec3& gradient) const {
+  const double h = difference_step();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 e = h * Vec3::Unit(i);
+    gradient(i) = (value(p + e) - value(p - e)) / (2.0 * h);
+  }
+  return value(p);
+}
+
+Mat3 ImplicitSurface::hessian(const Vec3& p) const {
+  // Differences of gradients with a step ten times the gradient's: when value_gradient() is
+  // itself a difference quotient its rounding error is then divided by a larger step.
+  const double h = 10.0 * difference_step();
+  Mat3 H;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 e = h * Vec3::Unit(i);
+    Vec3 gp, gm;
+    value_gradient(p + e, gp);
+    value_gradient(p - e, gm);
+    H.col(i) = (gp - gm) / (2.0 * h);
+  }
+  return 0.5 * (H + H.transpose());
+}
+
+PrincipalCurvatures ImplicitSurface::curvatures(const Vec3& p) const {
+  // Goldman 2005, "Curvature formulas for implicit curves and surfaces": the shape operator is
+  // the Hessian restricted to the tangent plane and divided by |grad F| (the level set's
+  // curvature; F < 0 inside, so a sphere gets +1/R). In an orthonormal tangent frame this is a
+  // symmetric 2x2 matrix whose eigen-pairs are the principal curvatures and directions; its
+  // determinant and half trace are Goldman's Gaussian and mean curvatures (up to his sign).
+  Vec3 g;
+  value_gradient(p, g);
+  const double gnorm = g.norm();
+  if (!(gnorm > 0.0)) return PrincipalCurvatures{};
+  const Vec3 n = g / gnorm;
+  const Vec3 e1 = n.unitOrthogonal();
+  const Vec3 e2 = n.cross(e1);
+  const Mat3 H = hessian(p);
+  Mat2 shape;
+  shape << e1.dot(H * e1), e1.dot(H * e2), e2.dot(H * e1), e2.dot(H * e2);
+  return principal_curvatures_in_frame(shape / gnorm, e1, e2, n);
+}
+
+}  // namespace dynamesh
