@@ -66,12 +66,12 @@ void MeshRenderer::clear(const RenderStyle& style, const glm::ivec2& viewport_si
 }
 
 void MeshRenderer::draw(const Camera& camera, const RenderStyle& style,
-                        const glm::ivec2& viewport_size) {
+                        const glm::ivec2& viewport_size, const glm::ivec2& origin) {
   if (!has_mesh() || viewport_size.x <= 0 || viewport_size.y <= 0) return;
   const float aspect = static_cast<float>(viewport_size.x) / static_cast<float>(viewport_size.y);
   const glm::mat4 model_view = camera.view() * camera.model(bounds_);
 
-  gl::Viewport(0, 0, viewport_size.x, viewport_size.y);
+  gl::Viewport(origin.x, origin.y, viewport_size.x, viewport_size.y);
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LESS);
   gl::Disable(GL_CULL_FACE);  // back faces are drawn, in their own tint

@@ -40,7 +40,9 @@ class MeshRenderer {
 
   // Clears colour and depth of the bound framebuffer to the style's background.
   void clear(const RenderStyle& style, const glm::ivec2& viewport_size) const;
-  void draw(const Camera& camera, const RenderStyle& style, const glm::ivec2& viewport_size);
+  // Draws into the viewport of `viewport_size` pixels whose lower-left corner is `origin`.
+  void draw(const Camera& camera, const RenderStyle& style, const glm::ivec2& viewport_size,
+            const glm::ivec2& origin = glm::ivec2(0));
 
   bool has_mesh() const { return mesh_.n_triangles() > 0; }
   const SceneBounds& bounds() const { return bounds_; }
