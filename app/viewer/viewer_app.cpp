@@ -279,6 +279,7 @@ int ViewerApp::run() {
   const bool scripted = args_.frames >= 0;
   int frames_done = 0;
   auto last = std::chrono::steady_clock::now();
+  const auto started = last;
   while (!window_.should_close()) {
     const bool idle = !state_.playing && !driver_.busy() && !recorder_.recording() && !scripted;
     if (idle) {
@@ -320,7 +321,10 @@ int ViewerApp::run() {
     if (scripted && frames_done >= args_.frames && !driver_.busy() &&
         driver_.results_published() == results_seen_) {
       write_png(read_window(), args_.screenshot);
-      std::printf("dynamesh: %d frames, screenshot %s\n", frames_done, args_.screenshot.c_str());
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      std::printf("dynamesh: %d frames in %.2f s (%zu triangles), screenshot %s\n", frames_done,
+                  seconds, renderer_.n_triangles(), args_.screenshot.c_str());
       return 0;
     }
     window_.swap();

@@ -178,6 +178,11 @@ void draw_colorbar_window(const ColorScale& scale, float window_width, float win
   const float bar_w = 22.0f, bar_h = std::min(320.0f, 0.5f * window_height);
   const float x0 = window_width - bar_w - 24.0f, y0 = 0.5f * (window_height - bar_h);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
+  // A light card behind bar and numbers keeps them readable over the surface.
+  const float card_w = std::max(ImGui::CalcTextSize(scale.label.c_str()).x + 20.0f, 110.0f);
+  draw->AddRectFilled(ImVec2(window_width - card_w, y0 - 36.0f),
+                      ImVec2(window_width - 4.0f, y0 + bar_h + 16.0f), IM_COL32(245, 246, 248, 225),
+                      6.0f);
   const Colormap& map = colormap(scale.map);
   constexpr int kSegments = 64;
   for (int i = 0; i < kSegments; ++i) {
