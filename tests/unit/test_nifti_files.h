@@ -3,6 +3,8 @@
 // used only as a gzip stream for .nii.gz.
 #pragma once
 
+#include <unistd.h>
+
 #include <nifti1.h>
 #include <znzlib.h>
 
@@ -20,9 +22,10 @@
 namespace dynamesh::test {
 
 // A scratch directory under the build tree, emptied at construction.
+// Per process: CTest runs tests in parallel processes, and two writing the same file race.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(DYNAMESH_BINARY_DIR) / "test_scratch" / name;
+  const std::filesystem::path dir = std::filesystem::path(DYNAMESH_BINARY_DIR) / "test_scratch" /
+                                    (name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

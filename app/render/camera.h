@@ -1,0 +1,58 @@
+// Orbit camera (GLM): a target point, a distance and a rotation. Trackball orbit, pan in
+// the view plane, zoom towards the cursor, fit to the scene, reset. With normalize_size the
+// model matrix scales the scene to a unit bounding sphere at the origin, so a surface that
+// grows or shrinks over time (the sphere scene: radius 0.6 -> 9) keeps a common size.
+// Cursor positions are normalised device coordinates: x, y in [-1, 1], y up.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/geometry/vector_types.h"
+
+namespace dynamesh {
+
+struct SceneBounds {
+  glm::vec3 center{0.0f};
+  float radius = 1.0f;  // of the bounding sphere; never zero
+
+  static SceneBounds from_box(const Box3& box);
+  // Centred on the box, radius reaching the farthest point: tighter than the box's corners.
+  static SceneBounds from_points(const std::vector<float>& xyz, const Box3& box);
+};
+
+class Camera {
+ public:
+  // Plain state, public so the viewer can save and restore it.
+  glm::quat rotation = default_rotation();  // world -> view
+  glm::vec3 target{0.0f};
+  float distance = 3.0f;
+  float fov_y_degrees = 35.0f;
+  bool normalize_size = false;
+
+  static glm::quat default_rotation();
+
+  glm::mat4 model(const SceneBounds& bounds) const;
+  glm::mat4 view() const;
+  glm::mat4 projection(float aspect, const SceneBounds& bounds) const;
+
+  // Trackball: the scene turns as if the cursor dragged a ball filling the view.
+  void orbit(const glm::vec2& from_ndc, const glm::vec2& to_ndc);
+  void pan(const glm::vec2& delta_ndc, float aspect);
+  // factor < 1 moves closer; the point under the cursor (on the target's plane) stays put.
+  void zoom(float factor, const glm::vec2& cursor_ndc, float aspect);
+  // Keeps the rotation, frames the scene.
+  void fit(const SceneBounds& bounds, float aspect);
+  // Default rotation, then fit.
+  void reset(const SceneBounds& bounds, float aspect);
+
+ private:
+  // The scene's bounds in the space the camera looks at (after model()).
+  SceneBounds framed(const SceneBounds& bounds) const;
+  // Half extents of the view at the target's depth.
+  glm::vec2 half_extent(float aspect) const;
+};
+
+}  // namespace dynamesh

@@ -1,0 +1,101 @@
+#include "app/render/color_scale.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dynamesh {
+
+FieldStats field_stats(const std::vector<float>& values) {
+  FieldStats s;
+  std::vector<float> v;
+  v.reserve(values.size());
+  for (float x : values) {
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  if (v.empty()) return s;
+  s.present = true;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  s.min = *lo;
+  s.max = *hi;
+  const auto at = [&v](double q) {
+    const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + k, v.end());
+    return v[static_cast<std::size_t>(k)];
+  };
+  s.low = at(0.02);
+  s.high = at(0.98);
+  return s;
+}
+
+bool has_color_scale(ColorMode mode, const FieldStats& stats) {
+  return mode != ColorMode::kShaded && stats.present;
+}
+
+namespace {
+
+// A non-empty interval, so the shader never divides by zero.
+ColorScale widen(ColorScale s) {
+  if (!(s.max > s.min)) s.max = s.min + std::max(1e-6f, std::abs(s.min) * 1e-3f);
+  return s;
+}
+
+ColorScale curvature_scale(const FieldStats& stats) {
+  ColorScale s;
+  s.label = "curvature";
+  if (stats.low < 0.0f && stats.high > 0.0f) {
+    // Signed: a diverging map centred on zero, so flat stays neutral.
+    const float m = std::max(-stats.low, stats.high);
+    s.map = ColormapId::kCoolWarm;
+    s.min = -m;
+    s.max = m;
+  } else {
+    s.map = ColormapId::kViridis;
+    s.min = stats.low;
+    s.max = stats.high;
+  }
+  return s;
+}
+
+}  // namespace
+
+ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const FieldStats& stats) {
+  ColorScale s;
+  s.label = std::string(color_mode_label(mode));
+  switch (mode) {
+    case ColorMode::kShaded:
+      break;
+    case ColorMode::kError:
+      s.map = settings.error_viridis ? ColormapId::kViridis : ColormapId::kErrorYellowGreenRed;
+      s.min = 0.0f;
+      s.max = static_cast<float>(settings.threshold);
+      break;
+    case ColorMode::kCurvature:
+      s = curvature_scale(stats);
+      break;
+    case ColorMode::kValence:
+      // Eight bins for valences 3..10 (split-born vertices stay within 4..8).
+      s.map = ColormapId::kCategorical;
+      s.min = 2.5f;
+      s.max = 10.5f;
+      s.discrete = true;
+      break;
+    case ColorMode::kLevel:
+      s.map = ColormapId::kViridis;
+      s.min = 0.0f;
+      s.max = std::max(1.0f, stats.max);
+      break;
+    case ColorMode::kIntensity: {
+      s.map = ColormapId::kGray;
+      const double window =
+          settings.intensity_auto ? stats.high - stats.low : settings.intensity_window;
+      const double level =
+          settings.intensity_auto ? 0.5 * (stats.high + stats.low) : settings.intensity_level;
+      s.min = static_cast<float>(level - 0.5 * window);
+      s.max = static_cast<float>(level + 0.5 * window);
+      break;
+    }
+  }
+  return widen(s);
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,33 @@
+// The mapping from a scalar field's values to colours for one colour mode: which map, and
+// which values land on its two ends. Used by the renderer and by both colour bars.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/render/colormap.h"
+#include "app/render/render_style.h"
+
+namespace dynamesh {
+
+// Summary of a field's values, computed once per snapshot (robust ends ignore outliers).
+struct FieldStats {
+  bool present = false;
+  float min = 0.0f, max = 0.0f;
+  float low = 0.0f, high = 0.0f;  // 2nd and 98th percentiles
+};
+
+FieldStats field_stats(const std::vector<float>& values);
+
+struct ColorScale {
+  ColormapId map = ColormapId::kViridis;
+  float min = 0.0f, max = 1.0f;  // values at the map's ends (clamped beyond)
+  bool discrete = false;         // integer-valued (valence): one bin per integer
+  std::string label;             // e.g. "sampled error"
+};
+
+// kShaded (or an absent field) gives no scale: the surface is drawn in its flat tint.
+bool has_color_scale(ColorMode mode, const FieldStats& stats);
+ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const FieldStats& stats);
+
+}  // namespace dynamesh

@@ -1,0 +1,30 @@
+// How a mesh is drawn: colour mode and its settings, wireframe, tints. Plain data, so the
+// viewer can keep it in its one state struct and the offscreen renderer in its options.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "app/render/color_mode.h"
+
+namespace dynamesh {
+
+struct ColorSettings {
+  double threshold = 0.008;         // error mode: red at and beyond this (the adapter's T)
+  bool error_viridis = false;       // error mode: viridis instead of yellow-green-red
+  bool intensity_auto = true;       // intensity: window/level from the field's 2nd-98th pct.
+  double intensity_window = 100.0;  // intensity: width of the grey ramp
+  double intensity_level = 50.0;    // intensity: value shown mid-grey
+};
+
+struct RenderStyle {
+  ColorMode mode = ColorMode::kShaded;
+  ColorSettings colors;
+  bool wireframe = true;
+  float wire_width = 1.0f;  // pixels
+  glm::vec3 wire_color{0.12f, 0.12f, 0.14f};
+  glm::vec3 surface_color{0.72f, 0.76f, 0.82f};
+  glm::vec3 backface_tint{0.75f, 0.35f, 0.30f};
+  glm::vec3 background{0.93f, 0.94f, 0.95f};
+};
+
+}  // namespace dynamesh

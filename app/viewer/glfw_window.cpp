@@ -1,0 +1,92 @@
+#include "app/viewer/glfw_window.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include "app/render/gl_loader.h"
+
+namespace dynamesh {
+
+bool GlfwWindow::display_available() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x11 != nullptr && *x11 != '\0') || (wayland != nullptr && *wayland != '\0');
+}
+
+GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
+  if (!display_available() || glfwInit() != GLFW_TRUE) {
+    throw std::runtime_error("no display available");
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (window_ == nullptr) {
+    glfwTerminate();
+    throw std::runtime_error("cannot open an OpenGL 3.3 core window");
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+  const std::string missing = gl::load_functions(
+      [](const char* name) { return reinterpret_cast<gl::ProcAddress>(glfwGetProcAddress(name)); });
+  if (!missing.empty()) {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+    throw std::runtime_error("OpenGL functions missing: " + missing);
+  }
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // layout is not state: ViewerState is
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+}
+
+GlfwWindow::~GlfwWindow() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+bool GlfwWindow::should_close() const {
+  return glfwWindowShouldClose(window_) == GLFW_TRUE;
+}
+
+glm::ivec2 GlfwWindow::framebuffer_size() const {
+  glm::ivec2 s;
+  glfwGetFramebufferSize(window_, &s.x, &s.y);
+  return s;
+}
+
+glm::ivec2 GlfwWindow::window_size() const {
+  glm::ivec2 s;
+  glfwGetWindowSize(window_, &s.x, &s.y);
+  return s;
+}
+
+void GlfwWindow::begin_ui_frame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+}
+
+void GlfwWindow::end_ui_frame() {
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void GlfwWindow::swap() {
+  glfwSwapBuffers(window_);
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,73 @@
+#include "app/viewer/simulation_driver.h"
+
+namespace dynamesh {
+
+SimulationDriver::SimulationDriver(std::unique_ptr<Simulation> simulation)
+    : simulation_(std::move(simulation)),
+      description_(simulation_->description()),
+      worker_([this] { run(); }) {}
+
+SimulationDriver::~SimulationDriver() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+    pending_.reset();
+  }
+  wake_.notify_all();
+  worker_.join();
+}
+
+void SimulationDriver::request_step(const StepRequest& request) {
+  {
+    std::lock_guard lock(mutex_);
+    // A restart must not be lost behind a later plain step: the newest request inherits it.
+    const bool restart = request.restart || (pending_ && pending_->restart);
+    pending_ = request;
+    pending_->restart = restart;
+  }
+  wake_.notify_one();
+}
+
+bool SimulationDriver::busy() const {
+  std::lock_guard lock(mutex_);
+  return running_step_ || pending_.has_value();
+}
+
+void SimulationDriver::wait_idle() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return !running_step_ && !pending_; });
+}
+
+StepResult SimulationDriver::latest_result() const {
+  std::lock_guard lock(mutex_);
+  return latest_;
+}
+
+std::uint64_t SimulationDriver::results_published() const {
+  std::lock_guard lock(mutex_);
+  return published_;
+}
+
+void SimulationDriver::run() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
+    if (stop_) return;
+    const StepRequest request = *pending_;
+    pending_.reset();
+    running_step_ = true;
+    lock.unlock();
+    StepResult result = simulation_->step(request);  // the long part, unlocked
+    lock.lock();
+    running_step_ = false;
+    if (result.snapshot || !result.error.empty()) {
+      // A failed step keeps showing the last good mesh, with the error beside it.
+      if (!result.snapshot) result.snapshot = latest_.snapshot;
+      latest_ = std::move(result);
+      ++published_;
+    }
+    if (!pending_) idle_.notify_all();
+  }
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,52 @@
+// SimulationDriver: runs a Simulation on a worker thread so the window stays responsive while
+// a step computes. The UI thread calls request_step() (never blocks; a request made while a
+// step runs replaces any older pending one: the newest wish wins) and polls
+// latest_result() each frame; finished snapshots are handed over as shared_ptr to const, so
+// the renderer reads them while the worker builds the next.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "app/viewer/simulation.h"
+
+namespace dynamesh {
+
+class SimulationDriver {
+ public:
+  explicit SimulationDriver(std::unique_ptr<Simulation> simulation);
+  ~SimulationDriver();  // finishes the running step, drops pending ones, joins
+  SimulationDriver(const SimulationDriver&) = delete;
+  SimulationDriver& operator=(const SimulationDriver&) = delete;
+
+  void request_step(const StepRequest& request);
+  // True while a step runs or waits to run.
+  bool busy() const;
+  // Blocks until no step runs or waits (scripted runs use this to be deterministic).
+  void wait_idle();
+  // The most recent finished step and a counter that grows with each one (so the caller can
+  // tell a new result from the one it already has).
+  StepResult latest_result() const;
+  std::uint64_t results_published() const;
+  std::string description() const { return description_; }
+
+ private:
+  void run();
+
+  std::unique_ptr<Simulation> simulation_;
+  std::string description_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::optional<StepRequest> pending_;
+  bool running_step_ = false;
+  bool stop_ = false;
+  StepResult latest_;
+  std::uint64_t published_ = 0;
+  std::thread worker_;  // last: starts after everything above exists
+};
+
+}  // namespace dynamesh

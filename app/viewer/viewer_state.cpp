@@ -1,0 +1,155 @@
+#include "app/viewer/viewer_state.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/io/atomic_file.h"
+
+namespace dynamesh {
+namespace {
+
+// One text codec per field type.
+std::string encode(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+std::string encode(float v) {
+  return encode(static_cast<double>(v));
+}
+std::string encode(int v) {
+  return std::to_string(v);
+}
+std::string encode(unsigned v) {
+  return std::to_string(v);
+}
+std::string encode(bool v) {
+  return v ? "true" : "false";
+}
+std::string encode(const std::string& v) {
+  return v;
+}
+std::string encode(ColorMode v) {
+  return std::string(color_mode_name(v));
+}
+std::string encode(const glm::vec3& v) {
+  return encode(v.x) + " " + encode(v.y) + " " + encode(v.z);
+}
+std::string encode(const glm::quat& q) {
+  return encode(q.w) + " " + encode(q.x) + " " + encode(q.y) + " " + encode(q.z);
+}
+
+bool decode(const std::string& t, double& v) {
+  return static_cast<bool>(std::istringstream(t) >> v);
+}
+bool decode(const std::string& t, float& v) {
+  return static_cast<bool>(std::istringstream(t) >> v);
+}
+bool decode(const std::string& t, int& v) {
+  return static_cast<bool>(std::istringstream(t) >> v);
+}
+bool decode(const std::string& t, unsigned& v) {
+  return static_cast<bool>(std::istringstream(t) >> v);
+}
+bool decode(const std::string& t, bool& v) {
+  if (t != "true" && t != "false") return false;
+  v = t == "true";
+  return true;
+}
+bool decode(const std::string& t, std::string& v) {
+  v = t;
+  return true;
+}
+bool decode(const std::string& t, ColorMode& v) {
+  const auto m = parse_color_mode(t);
+  if (m) v = *m;
+  return m.has_value();
+}
+bool decode(const std::string& t, glm::vec3& v) {
+  return static_cast<bool>(std::istringstream(t) >> v.x >> v.y >> v.z);
+}
+bool decode(const std::string& t, glm::quat& q) {
+  return static_cast<bool>(std::istringstream(t) >> q.w >> q.x >> q.y >> q.z);
+}
+
+// Every saved field, once: save and load walk the same list, so they cannot disagree.
+template <class State, class Visit>
+void visit_fields(State& s, Visit&& visit) {
+  visit("scene", s.controls.scene);
+  visit("threshold", s.controls.threshold);
+  visit("epsilon", s.controls.epsilon);
+  visit("density", s.controls.density);
+  visit("k", s.controls.k);
+  visit("smooth_iterations", s.controls.smooth_iterations);
+  visit("edge_length", s.controls.edge_length);
+  visit("max_triangles", s.controls.max_triangles);
+  visit("seed", s.controls.seed);
+  visit("t0", s.t0);
+  visit("t1", s.t1);
+  visit("steps", s.steps);
+  visit("time", s.time);
+  visit("loop", s.loop);
+  visit("camera.rotation", s.camera.rotation);
+  visit("camera.target", s.camera.target);
+  visit("camera.distance", s.camera.distance);
+  visit("camera.fov_y_degrees", s.camera.fov_y_degrees);
+  visit("camera.normalize_size", s.camera.normalize_size);
+  visit("color_mode", s.style.mode);
+  visit("error_viridis", s.style.colors.error_viridis);
+  visit("intensity_auto", s.style.colors.intensity_auto);
+  visit("intensity_window", s.style.colors.intensity_window);
+  visit("intensity_level", s.style.colors.intensity_level);
+  visit("wireframe", s.style.wireframe);
+  visit("wire_width", s.style.wire_width);
+  visit("show_panel", s.show_panel);
+  visit("show_colorbar", s.show_colorbar);
+  visit("output_dir", s.output_dir);
+  visit("record_fps", s.record_fps);
+}
+
+}  // namespace
+
+void save_viewer_state(const ViewerState& state, const std::string& path) {
+  std::ostringstream out;
+  out << "# dynamesh viewer state\n";
+  visit_fields(state, [&out](const char* key, const auto& value) {
+    out << key << " = " << encode(value) << "\n";
+  });
+  for (const auto& [name, value] : state.controls.scene_parameters) {
+    out << "param." << name << " = " << encode(value) << "\n";
+  }
+  AtomicFile file(path);
+  file.stream() << out.str();
+  file.commit();
+}
+
+bool load_viewer_state(ViewerState& state, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::map<std::string, std::string> entries;
+  std::vector<std::pair<std::string, double>> parameters;
+  for (std::string line; std::getline(in, line);) {
+    const auto eq = line.find(" = ");
+    if (line.empty() || line[0] == '#' || eq == std::string::npos) continue;
+    const std::string key = line.substr(0, eq), value = line.substr(eq + 3);
+    double number = 0.0;
+    if (key.rfind("param.", 0) == 0 && decode(value, number)) {
+      parameters.emplace_back(key.substr(6), number);
+    } else {
+      entries[key] = value;
+    }
+  }
+  visit_fields(state, [&entries](const char* key, auto& value) {
+    const auto it = entries.find(key);
+    if (it == entries.end()) return;
+    auto decoded = value;
+    if (decode(it->second, decoded)) value = decoded;
+  });
+  state.controls.scene_parameters = parameters;
+  return true;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,48 @@
+// ViewerState: everything a person can set in the viewer, in one struct — the simulation
+// controls, the playback, the camera and the drawing style. Saved to and restored from a
+// small key = value file, reset by assigning ViewerState{}. No parameter lives anywhere else
+// (no static locals), so what is on screen can always be saved and reproduced.
+#pragma once
+
+#include <string>
+
+#include "app/render/camera.h"
+#include "app/render/render_style.h"
+#include "app/viewer/simulation.h"
+
+namespace dynamesh {
+
+struct ViewerState {
+  // The viewer opens on the sampled error: what the adaptation is about.
+  static RenderStyle default_style() {
+    RenderStyle s;
+    s.mode = ColorMode::kError;
+    return s;
+  }
+
+  SimulationControls controls;
+  // Playback: steps evenly spaced from t0 to t1; `time` is the one shown.
+  double t0 = 0.0, t1 = 1.0;
+  int steps = 100;
+  double time = 0.0;
+  bool playing = false;
+  bool loop = true;
+  // View.
+  Camera camera;
+  RenderStyle style = default_style();
+  bool show_panel = true;
+  bool show_colorbar = true;
+  // Output.
+  std::string output_dir = ".";  // screenshots and recordings
+  int record_fps = 30;
+
+  double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
+};
+
+// Writes the state as "key = value" lines (atomically). Throws std::runtime_error on failure.
+void save_viewer_state(const ViewerState& state, const std::string& path);
+// Reads a file written by save_viewer_state over `state`: unknown keys are ignored (older or
+// newer versions), malformed values are skipped. Returns false when the file cannot be read.
+bool load_viewer_state(ViewerState& state, const std::string& path);
+
+}  // namespace dynamesh
