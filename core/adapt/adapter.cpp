@@ -48,6 +48,7 @@ class Adapter::Tracker final : public MeshListener {
 
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
     grow(mesh);
+    probe_.place_split_vertex(mesh, change);
     if (!probe_.project_vertex(mesh, change.vertex)) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
     for (int h = 0; h < change.count; ++h)
@@ -335,6 +336,17 @@ MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {
     }
     if (fields.valence) scalars.push_back(std::move(valence));
     if (fields.level) scalars.push_back(std::move(level));
+  }
+  for (const std::string& name : fields.quantities) {
+    ScalarField q{name, std::vector<float>(n, 0.0f)};
+#pragma omp parallel for schedule(dynamic, 1024) if (count > kParallelMin)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      if (mesh_.is_alive(v))
+        q.values[static_cast<std::size_t>(i)] =
+            static_cast<float>(surface_.point_quantity(name, mesh_.position(v)));
+    }
+    scalars.push_back(std::move(q));
   }
   MeshSnapshot snap = make_snapshot(mesh_, &normals, scalars);
   snap.time = surface_.time();

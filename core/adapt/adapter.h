@@ -14,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/adapt/adapt_options.h"
@@ -33,6 +34,8 @@ struct SnapshotFields {
   bool curvature = false;  // largest |principal curvature| of S at the vertex
   bool valence = false;
   bool level = false;
+  // Surface point quantities by name (Surface::point_quantities(), e.g. "intensity").
+  std::vector<std::string> quantities;
 };
 
 class Adapter {

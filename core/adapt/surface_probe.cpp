@@ -14,6 +14,15 @@ SurfaceProbe::SurfaceProbe(const Surface& surface)
       // Beyond this the first-order distance may be off by more than a few per cent.
       first_order_limit_(0.02 * surface.length_scale()) {}
 
+void SurfaceProbe::place_split_vertex(Mesh48& mesh, const DiamondChange& change) const {
+  if (parametric_) {
+    // The mesh put (u, v) at the plain average, wrong across a periodic seam.
+    const Vec2& a = mesh.uv(change.parents[0]);
+    const Vec2 b = parametric_->unwrap_near(mesh.uv(change.parents[1]), a);
+    mesh.uv(change.vertex) = parametric_->wrap_into_domain(0.5 * (a + b));
+  }
+}
+
 bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
   if (parametric_) {
     mesh.position(v) = parametric_->position(mesh.uv(v));
@@ -26,7 +35,13 @@ bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
 
 Vec3 SurfaceProbe::residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const {
   const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
-  if (parametric_) return x - parametric_->position(b[0] * uv[0] + b[1] * uv[1] + b[2] * uv[2]);
+  if (parametric_) {
+    // Interpolate (u, v) continuously across a periodic seam.
+    const Vec2 uv1 = parametric_->unwrap_near(uv[1], uv[0]);
+    const Vec2 uv2 = parametric_->unwrap_near(uv[2], uv[0]);
+    return x - parametric_->position(
+                   parametric_->wrap_into_domain(b[0] * uv[0] + b[1] * uv1 + b[2] * uv2));
+  }
   Vec3 g;
   const double f = implicit_->value_gradient(x, g);
   const double gnorm = g.norm();

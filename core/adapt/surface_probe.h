@@ -19,6 +19,9 @@ class SurfaceProbe {
   // position). Returns false when an implicit projection did not converge (v is left at the
   // last iterate, which is still closer than where it started).
   bool project_vertex(Mesh48& mesh, Vertex v) const;
+  // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
+  // periodic seam); call before project_vertex.
+  void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
 
   // Distance to the surface of the point with barycentric coordinates b over the triangle
   // (v0, v1, v2) (positions p, parameters uv). Implicit: the first-order distance

@@ -105,9 +105,10 @@ bool parametric_candidate(const ParametricSurface& s, const Mesh48& mesh, Vertex
   const Vec2 size = dom.max - dom.min;
   const Vec2 old = mesh.uv(v);
   bool fixed[2];
+  const bool periodic[2] = {dom.periodic_u, dom.periodic_v};
   for (int a = 0; a < 2; ++a)
-    fixed[a] = std::abs(old[a] - dom.min[a]) < 1e-12 * size[a] ||
-               std::abs(old[a] - dom.max[a]) < 1e-12 * size[a];
+    fixed[a] = !periodic[a] && (std::abs(old[a] - dom.min[a]) < 1e-12 * size[a] ||
+                                std::abs(old[a] - dom.max[a]) < 1e-12 * size[a]);
   if (fixed[0] && fixed[1]) return false;
   const ParametricDerivatives dv = s.derivatives(old);
   Eigen::Matrix<double, 3, 2> J;
@@ -116,7 +117,7 @@ bool parametric_candidate(const ParametricSurface& s, const Mesh48& mesh, Vertex
   for (int a = 0; a < 2; ++a)
     if (fixed[a]) step[a] = 0;
   if (!step.allFinite()) return false;
-  uv = (old + step).cwiseMax(dom.min).cwiseMin(dom.max);
+  uv = s.wrap_into_domain(old + step);
   position = s.position(uv);
   return true;
 }

@@ -3,6 +3,12 @@
 // derivatives (fundamental forms for parametric surfaces, Goldman 2005 for implicit ones).
 #include "core/surface/surface.h"
 
+#include <limits>
+
+#include <cmath>
+
+#include <algorithm>
+
 #include <stdexcept>
 
 #include "core/surface/parameter_table.h"
@@ -42,6 +48,37 @@ ParametricDerivatives ParametricSurface::derivatives(const Vec2& uv) const {
            position(uv - Du - Dv)) /
           (4.0 * Hu * Hv);
   return d;
+}
+
+double Surface::point_quantity(const std::string&, const Vec3&) const {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+Vec2 ParametricSurface::unwrap_near(const Vec2& uv, const Vec2& reference) const {
+  const ParameterDomain d = domain();
+  Vec2 out = uv;
+  const bool periodic[2] = {d.periodic_u, d.periodic_v};
+  for (int a = 0; a < 2; ++a) {
+    if (!periodic[a]) continue;
+    const double period = d.max[a] - d.min[a];
+    out[a] -= period * std::round((out[a] - reference[a]) / period);
+  }
+  return out;
+}
+
+Vec2 ParametricSurface::wrap_into_domain(const Vec2& uv) const {
+  const ParameterDomain d = domain();
+  Vec2 out = uv;
+  const bool periodic[2] = {d.periodic_u, d.periodic_v};
+  for (int a = 0; a < 2; ++a) {
+    const double period = d.max[a] - d.min[a];
+    if (periodic[a])
+      out[a] = d.min[a] +
+               period * (((out[a] - d.min[a]) / period) - std::floor((out[a] - d.min[a]) / period));
+    else
+      out[a] = std::clamp(out[a], d.min[a], d.max[a]);
+  }
+  return out;
 }
 
 Vec3 ParametricSurface::normal(const Vec2& uv) const {

@@ -65,6 +65,12 @@ class Surface {
   // current time (parametric: with their (u, v) set).
   virtual Mesh48 base_mesh() const = 0;
 
+  // Scalar quantities the surface carries at its points besides geometry (e.g. the MR
+  // intensity of the `mri` scene), by name; the viewer and exporters can colour by them.
+  virtual std::vector<std::string> point_quantities() const { return {}; }
+  // NaN for an unknown name. Thread-safe like every const evaluation.
+  virtual double point_quantity(const std::string& name, const Vec3& p) const;
+
  private:
   double time_ = 0.0;
 };
@@ -86,6 +92,11 @@ class ParametricSurface : public Surface {
 
   virtual ParameterDomain domain() const = 0;
   virtual Vec3 position(const Vec2& uv) const = 0;
+  // Periodic directions: the copy of uv (shifted by whole periods) nearest to `reference`, so
+  // that interpolation across the seam stays continuous; identity for non-periodic ones.
+  Vec2 unwrap_near(const Vec2& uv, const Vec2& reference) const;
+  // uv brought into the domain: wrapped along periodic directions, clamped along others.
+  Vec2 wrap_into_domain(const Vec2& uv) const;
   // Analytic where a closed form exists; by default central differences with a step taken
   // from the domain's size.
   virtual ParametricDerivatives derivatives(const Vec2& uv) const;
