@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/surface/expression/expr_scene.h"
 #include "core/surface/scenes/capsule_bend_scene.h"
 #include "core/surface/scenes/sinc_scene.h"
 #include "core/surface/scenes/sphere_scene.h"
@@ -41,8 +42,11 @@ Entry builtin() {
 // here rather than registering themselves from their own files.
 struct Catalogue {
   std::mutex mutex;
-  std::vector<Entry> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
-                             builtin<SincScene>(), builtin<TwistScene>()};
+  std::vector<Entry> entries{builtin<SphereScene>(),
+                             builtin<CapsuleBendScene>(),
+                             builtin<SincScene>(),
+                             builtin<TwistScene>(),
+                             {ExprScene::kName, ExprScene::kDescription, make_expr_scene, false}};
 };
 
 Catalogue& catalogue() {
