@@ -38,15 +38,16 @@ Entry builtin() {
           }};
 }
 
+Entry expr_entry() {
+  return {ExprScene::kName, ExprScene::kDescription, make_expr_scene, false};
+}
+
 // A static library drops object files nobody references, so the built-in scenes are listed
 // here rather than registering themselves from their own files.
 struct Catalogue {
   std::mutex mutex;
-  std::vector<Entry> entries{builtin<SphereScene>(),
-                             builtin<CapsuleBendScene>(),
-                             builtin<SincScene>(),
-                             builtin<TwistScene>(),
-                             {ExprScene::kName, ExprScene::kDescription, make_expr_scene, false}};
+  std::vector<Entry> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
+                             builtin<SincScene>(), builtin<TwistScene>(), expr_entry()};
 };
 
 Catalogue& catalogue() {
