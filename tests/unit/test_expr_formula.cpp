@@ -105,7 +105,9 @@ TEST(ExprFormula, BadFormulasGiveClearErrors) {
 }
 
 TEST(ExprFormula, BadOptionsGiveClearErrors) {
-  EXPECT_ERROR_HAS(expr({}), "no formula given");
+  EXPECT_ERROR_HAS(expr({{"bounds", "-1,-1,-1,1,1,1"}}), "no formula given");
+  // No options at all: the default formula (a scene menu can always show the scene).
+  EXPECT_EQ(expr({})->kind(), SurfaceKind::kImplicit);
   EXPECT_ERROR_HAS(expr({{"implicit", "x"}, {"height", "x"}}), "only one of");
   EXPECT_ERROR_HAS(expr({{"implicit", "x^2+y^2+z^2-1"}}), "--implicit needs --bounds");
   EXPECT_ERROR_HAS(expr({{"implicit", "x^2+y^2+z^2-1"}, {"bounds", "-2,-2,-2,2,-2,2"}}),

@@ -96,6 +96,13 @@ ExprOptions parse_expr_options(const TextOptions& options) {
       throw std::invalid_argument("expr: takes no option '" + key + "'; " + kUsage);
     }
   }
+  // No options at all: the default formula, so that a scene menu (and `--scene expr` alone)
+  // shows something to start editing from. Options without a formula are a mistake.
+  if (options.empty()) {
+    o.formula = kDefaultImplicitFormula;
+    o.bounds = Box3{Vec3::Constant(-1.5), Vec3::Constant(1.5)};
+    return o;
+  }
   if (kinds == 0) throw std::invalid_argument(std::string("expr: no formula given; ") + kUsage);
   switch (o.kind) {
     case ExprKind::kImplicit:

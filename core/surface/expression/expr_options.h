@@ -22,6 +22,10 @@ struct ExprOptions {
   std::string base_mesh;                        // --base-mesh FILE (implicit)
 };
 
+// Without any option: a pulsing blob in the bounds [-1.5, 1.5]^3.
+inline constexpr const char* kDefaultImplicitFormula =
+    "sqrt(x^2+y^2+z^2) - 0.8*(1 + 0.3*sin(2*pi*t)*sin(4*x)*sin(4*y)*sin(4*z))";
+
 // Throws std::invalid_argument (one line: what is wrong, what to type instead).
 ExprOptions parse_expr_options(const TextOptions& options);
 
