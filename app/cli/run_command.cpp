@@ -157,12 +157,18 @@ int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
       if (frames) frames->render(snap, s.step);
     }
   };
-  record(adapter.initialize());
-  for (int i = 1; i <= o.steps; ++i) {
-    const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
-    const StepStats& s = adapter.step(t);
-    step_seconds.push_back(s.seconds.total);
-    record(s);
+  // A surface that turns bad during the run (a formula that becomes NaN at some t) throws
+  // std::invalid_argument before the mesh is touched: bad input, exit status 2.
+  try {
+    record(adapter.initialize());
+    for (int i = 1; i <= o.steps; ++i) {
+      const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
+      const StepStats& s = adapter.step(t);
+      step_seconds.push_back(s.seconds.total);
+      record(s);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   summary.last = adapter.stats();
   if (step_seconds.empty()) step_seconds.push_back(summary.last.seconds.total);
