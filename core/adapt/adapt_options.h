@@ -8,6 +8,18 @@
 
 namespace dynamesh {
 
+// The original implementation's guard against pathological triangles (DESIGN.md, "The 4-8
+// mesh"): an edge whose diamond has an angle below min_deg or above max_deg is not split
+// (bisecting a sliver makes thinner slivers), and a weldable vertex with such a triangle in
+// its star is welded first, even above T - eps, as long as the weld keeps the error within
+// T + eps (so the split pass has no reason to undo it).
+struct AngleGuard {
+  bool refuse_splits = false;
+  bool weld_first = true;
+  double min_deg = 10.0;
+  double max_deg = 160.0;
+};
+
 struct AdaptOptions {
   double threshold = 0.008;  // T: target geometric error (scene units)
   double epsilon = 0.002;    // eps: hysteresis half-width; weld below T - eps, split above T + eps
@@ -17,6 +29,7 @@ struct AdaptOptions {
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
   SmoothingOptions smoothing;
+  AngleGuard angle_guard;
 };
 
 }  // namespace dynamesh
