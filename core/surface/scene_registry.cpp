@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/surface/expression/expr_scene.h"
 #include "core/surface/scenes/capsule_bend_scene.h"
 #include "core/surface/scenes/sinc_scene.h"
 #include "core/surface/scenes/sphere_scene.h"
@@ -37,12 +38,16 @@ Entry builtin() {
           }};
 }
 
+Entry expr_entry() {
+  return {ExprScene::kName, ExprScene::kDescription, make_expr_scene, false};
+}
+
 // A static library drops object files nobody references, so the built-in scenes are listed
 // here rather than registering themselves from their own files.
 struct Catalogue {
   std::mutex mutex;
   std::vector<Entry> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
-                             builtin<SincScene>(), builtin<TwistScene>()};
+                             builtin<SincScene>(), builtin<TwistScene>(), expr_entry()};
 };
 
 Catalogue& catalogue() {
