@@ -8,6 +8,20 @@
 
 namespace dynamesh {
 
+// The original implementation's guard against pathological triangles (DESIGN.md, "The 4-8
+// mesh"): a triangle with an angle below min_deg or above max_deg is pathological.
+// weld_first: a weldable vertex with such a triangle in its star is welded before any other,
+// even above T - eps, as long as the weld keeps the error within T + eps (so the split pass has
+// no reason to undo it). refuse_splits: an edge whose diamond holds one is not split
+// (bisecting a sliver makes thinner slivers) -- off by default, because it leaves faces above
+// T + eps (measured 1.36 (T + eps) on capsule-bend; test_smoothing_angle_guard.cpp).
+struct AngleGuard {
+  bool refuse_splits = false;
+  bool weld_first = true;
+  double min_deg = 10.0;
+  double max_deg = 160.0;
+};
+
 struct AdaptOptions {
   double threshold = 0.008;  // T: target geometric error (scene units)
   double epsilon = 0.002;    // eps: hysteresis half-width; weld below T - eps, split above T + eps
@@ -17,6 +31,7 @@ struct AdaptOptions {
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
   SmoothingOptions smoothing;
+  AngleGuard angle_guard;
 };
 
 }  // namespace dynamesh

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <queue>
 
+#include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
 
 namespace dynamesh {
@@ -34,7 +36,11 @@ struct SplitEntry {
 struct WeldEntry {
   double error;
   std::uint32_t vertex;
-  bool operator<(const WeldEntry& o) const { return error > o.error; }  // smallest on top
+  bool pathological = false;                  // welded before every other vertex (angle guard)
+  bool operator<(const WeldEntry& o) const {  // pathological first, then smallest error
+    if (pathological != o.pathological) return o.pathological;
+    return error > o.error;
+  }
 };
 
 }  // namespace
@@ -135,6 +141,8 @@ const StepStats& Adapter::step(double t) {
   stats_.step = ++step_;
   ++tracker_->current_step;
   stats_.time = t;
+  start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
+  vertices_at_start_ = mesh_.n_vertices();
   const bool correct = options_.geometric && surface_changed();
   if (correct) normal_correction();
   stats_.seconds.project = clock.lap();
@@ -173,6 +181,8 @@ void Adapter::normal_correction() {
 void Adapter::tangential_correction() {
   const SmoothingResult r = smooth_tangentially(mesh_, surface_, options_.smoothing);
   tracker_->projection_failures += r.projection_failures;
+  stats_.smoothing_moved = r.moved;
+  stats_.smoothing_reverted = r.reverted;
 }
 
 void Adapter::sampling() {
@@ -202,37 +212,73 @@ bool Adapter::weld_allowed(const DiamondChange& plan, double error) const {
   return true;
 }
 
+bool Adapter::pathological(Face f) const {
+  const auto v = mesh_.vertices(f);
+  const auto range =
+      angle_range_deg(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]));
+  return range[0] < options_.angle_guard.min_deg || range[1] > options_.angle_guard.max_deg;
+}
+
+// The edge to split is the face's refinement edge; its incident angles are those of the
+// face and of its neighbour across it (the diamond).
+bool Adapter::split_refused(Face f) const {
+  if (!options_.angle_guard.refuse_splits) return false;
+  if (pathological(f)) return true;
+  const Face other = mesh_.neighbor(f, 0);
+  return other.is_valid() && pathological(other);
+}
+
+bool Adapter::pathological_star(const DiamondChange& plan) const {
+  if (!options_.angle_guard.weld_first) return false;
+  for (int h = 0; h < plan.count; ++h)
+    for (Face f : plan.halves[h].children)
+      if (pathological(f)) return true;
+  return false;
+}
+
 void Adapter::weld_pass() {
   // Post-weld errors of every weldable vertex, in parallel (each sample belongs to the star
   // of its face's newest vertex only, so this costs at most one evaluation per sample).
   const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
-  std::vector<double> key(static_cast<std::size_t>(n), -1.0);
+  // Pathological vertices (angle guard) are welded whenever the weld keeps the error within
+  // T + eps; they are flagged by a negative key and go first.
+  const double guard_limit = options_.threshold + options_.epsilon;
+  auto weld_key = [&](const DiamondChange& plan, double error) {
+    if (weld_allowed(plan, error)) return pathological_star(plan) ? -1.0 - error : error;
+    if (error <= guard_limit && pathological_star(plan)) return -1.0 - error;
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  std::vector<double> key(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
-    const double error = samples_.weld_error(mesh_, probe_, plan);
-    if (weld_allowed(plan, error)) key[static_cast<std::size_t>(i)] = error;
+    key[static_cast<std::size_t>(i)] = weld_key(plan, samples_.weld_error(mesh_, probe_, plan));
   }
+  auto entry = [](double k, std::uint32_t v) {
+    return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
+  };
   std::priority_queue<WeldEntry> queue;
   for (std::int64_t i = 0; i < n; ++i)
-    if (key[static_cast<std::size_t>(i)] >= 0)
-      queue.push({key[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(i)});
+    if (!std::isnan(key[static_cast<std::size_t>(i)]))
+      queue.push(entry(key[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(i)));
   tracker_->touched.clear();
   DiamondChange plan;
   while (!queue.empty()) {
     const Vertex v(queue.top().vertex);
+    const bool forced = queue.top().pathological;
     queue.pop();
     if (!mesh_.plan_weld(v, plan)) continue;
     mesh_.weld(v);
     ++stats_.welds;
+    stats_.pathological_welds += forced;
     // Welding may make the merged faces' newest vertices weldable: the cascade.
     for (int h = 0; h < plan.count; ++h) {
       const Vertex apex = plan.halves[h].parent_vertices[0];
       DiamondChange next;
       if (!mesh_.plan_weld(apex, next)) continue;
-      const double error = samples_.weld_error(mesh_, probe_, next);
-      if (weld_allowed(next, error)) queue.push({error, apex.idx});
+      const double k = weld_key(next, samples_.weld_error(mesh_, probe_, next));
+      if (!std::isnan(k)) queue.push(entry(k, apex.idx));
     }
   }
   // Merged faces need their errors against their new shape before the split pass.
@@ -263,6 +309,10 @@ void Adapter::split_pass(bool initial) {
       stats_.budget_hit = true;
       break;
     }
+    if (split_refused(f)) {
+      ++stats_.splits_refused;
+      continue;
+    }
     tracker_->touched.clear();
     mesh_.split(f);
     for (Face t : tracker_->touched) {
@@ -288,6 +338,22 @@ void Adapter::finish_stats() {
   std::size_t kept = 0;
   for (Vertex v : mesh_.live_vertices()) kept += tracker_->birth_step[v.idx] < step_;
   stats_.vertices_kept = step_ == 0 ? 0 : kept;
+  if (step_ > 0) {
+    // Survivors: alive now and born before this step, so alive at its start (an id freed by
+    // a weld and reused by a split this step carries this step's birth).
+    double sum = 0, worst = 0;
+    for (Vertex v : mesh_.live_vertices()) {
+      if (tracker_->birth_step[v.idx] >= step_) continue;
+      const double d = (mesh_.position(v) - start_positions_[v.idx]).norm();
+      sum += d;
+      worst = std::max(worst, d);
+    }
+    stats_.kept_fraction = vertices_at_start_
+                               ? static_cast<double>(kept) / static_cast<double>(vertices_at_start_)
+                               : 1.0;
+    stats_.survivor_displacement_mean = kept ? sum / static_cast<double>(kept) : 0.0;
+    stats_.survivor_displacement_max = worst;
+  }
   stats_.projection_failures = tracker_->projection_failures;
   tracker_->projection_failures = 0;
   const PhaseSeconds& p = stats_.seconds;

@@ -72,6 +72,9 @@ class Adapter {
   double split_urgency(Face f, bool initial) const;
   bool weld_allowed(const DiamondChange& plan, double error) const;
   double star_error(const DiamondChange& plan) const;
+  bool pathological(Face f) const;
+  bool split_refused(Face f) const;
+  bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
@@ -87,6 +90,9 @@ class Adapter {
   std::uint64_t step_ = 0;
   double last_time_ = 0.0;
   std::vector<double> last_parameters_;
+  // Positions at the start of the current step (temporal coherence); reused step to step.
+  std::vector<Vec3> start_positions_;
+  std::size_t vertices_at_start_ = 0;
 };
 
 }  // namespace dynamesh

@@ -19,6 +19,15 @@ struct StepStats {
   double max_error = 0.0, mean_error = 0.0;  // over all samples, after the step
   std::size_t samples = 0;
   std::size_t vertices_kept = 0;  // vertices alive before and after the step
+  // Temporal coherence (DESIGN.md, "Quality bars"): vertices_kept over the vertices alive at
+  // the start of the step (1 on a static surface; re-meshing would give 0), and how far the
+  // survivors moved during the step (normal and tangential correction), in scene units.
+  double kept_fraction = 0.0;
+  double survivor_displacement_mean = 0.0, survivor_displacement_max = 0.0;
+  // Tangential correction: vertex moves kept and undone by its guards.
+  std::size_t smoothing_moved = 0, smoothing_reverted = 0;
+  // Angle guard (AdaptOptions::angle_guard): splits refused, pathological vertices welded.
+  std::size_t splits_refused = 0, pathological_welds = 0;
   std::size_t projection_failures = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
   PhaseSeconds seconds;

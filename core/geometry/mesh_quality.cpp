@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace dynamesh {
 namespace {
@@ -21,6 +22,65 @@ double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double s = 0.5 * (la + lb + lc);
   const double circumradius = la * lb * lc / (4 * area), inradius = area / s;
   return circumradius / (2 * inradius);
+}
+
+std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double x = angle_deg(a, b, c), y = angle_deg(b, c, a), z = angle_deg(c, a, b);
+  return {std::min({x, y, z}), std::max({x, y, z})};
+}
+
+AspectDistribution aspect_distribution(const Mesh48& mesh) {
+  AspectDistribution d;
+  std::vector<double> ratios;
+  ratios.reserve(mesh.n_faces());
+  for (Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    const double r = aspect_ratio(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
+    ratios.push_back(r);
+    const auto bin = std::upper_bound(d.kEdges.begin(), d.kEdges.end(), r) - d.kEdges.begin();
+    ++d.histogram[static_cast<std::size_t>(std::max<std::ptrdiff_t>(bin - 1, 0))];
+  }
+  d.triangles = ratios.size();
+  if (ratios.empty()) return d;
+  std::sort(ratios.begin(), ratios.end());
+  // Nearest-rank percentile: the smallest value with at least p of the faces at or below it.
+  auto percentile = [&](double p) {
+    const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(ratios.size())));
+    return ratios[std::clamp<std::size_t>(rank, 1, ratios.size()) - 1];
+  };
+  d.p50 = percentile(0.50);
+  d.p90 = percentile(0.90);
+  d.p99 = percentile(0.99);
+  d.max = ratios.back();
+  return d;
+}
+
+EdgeLengthSpread edge_length_spread(const Mesh48& mesh,
+                                    const std::function<bool(const Vec3&)>& region) {
+  EdgeLengthSpread s;
+  s.min = std::numeric_limits<double>::infinity();
+  double sum = 0, sum2 = 0;
+  for (Face f : mesh.live_faces()) {
+    for (int e = 0; e < 3; ++e) {
+      // Each interior edge is seen from both faces: count it from the lower face id only.
+      const Face other = mesh.neighbor(f, e);
+      if (other.is_valid() && other.idx < f.idx) continue;
+      const Vec3& a = mesh.position(mesh.vertex(f, (e + 1) % 3));
+      const Vec3& b = mesh.position(mesh.vertex(f, (e + 2) % 3));
+      if (!region(0.5 * (a + b))) continue;
+      const double len = (a - b).norm();
+      ++s.edges;
+      sum += len;
+      sum2 += len * len;
+      s.min = std::min(s.min, len);
+      s.max = std::max(s.max, len);
+    }
+  }
+  if (s.edges == 0) return EdgeLengthSpread{};
+  const auto n = static_cast<double>(s.edges);
+  s.mean = sum / n;
+  s.stddev = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+  return s;
 }
 
 MeshQuality measure_quality(const Mesh48& mesh) {

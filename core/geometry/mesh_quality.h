@@ -1,9 +1,11 @@
-// Mesh quality measures: angles, aspect ratios, valences. Computed from positions and
-// connectivity only, so they judge any mesh the same way.
+// Mesh quality measures: angles, aspect ratios, valences, edge-length spread. Computed from
+// positions and connectivity only, so they judge any mesh the same way (and a test can judge
+// the adapter's meshes without trusting the adapter).
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <functional>
 
 #include "core/mesh/mesh48.h"
 
@@ -23,5 +25,35 @@ MeshQuality measure_quality(const Mesh48& mesh);
 
 // Aspect ratio R / (2 r) of one triangle; +infinity when degenerate.
 double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Smallest and largest interior angle of one triangle, in degrees.
+std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Distribution of the aspect ratio over the faces: percentiles (nearest rank) and a
+// histogram. A 4-8 mesh of right isosceles triangles sits at 1.207 everywhere; the tail
+// (p99, max) is what tangential motion and deformation stretch.
+struct AspectDistribution {
+  static constexpr std::array<double, 8> kEdges = {1.0, 1.1, 1.25, 1.5, 2.0, 3.0, 5.0, 10.0};
+  double p50 = 0, p90 = 0, p99 = 0, max = 0;
+  // bin i counts ratios in [kEdges[i], kEdges[i + 1]); the last bin is [10, inf).
+  std::array<std::size_t, kEdges.size()> histogram{};
+  std::size_t triangles = 0;
+};
+
+AspectDistribution aspect_distribution(const Mesh48& mesh);
+
+// Edge lengths of the edges whose midpoint satisfies `region` (every edge once). `ratio`
+// (longest / shortest) and `cv` (standard deviation / mean) measure the spread: a uniform
+// region (an edge-length criterion) should have a small one.
+struct EdgeLengthSpread {
+  std::size_t edges = 0;
+  double min = 0, max = 0, mean = 0, stddev = 0;
+  double ratio() const { return min > 0 ? max / min : 0.0; }
+  double cv() const { return mean > 0 ? stddev / mean : 0.0; }
+};
+
+EdgeLengthSpread edge_length_spread(
+    const Mesh48& mesh,
+    const std::function<bool(const Vec3&)>& region = [](const Vec3&) { return true; });
 
 }  // namespace dynamesh
