@@ -287,10 +287,7 @@ void Adapter::weld_pass() {
     if (mesh_.is_alive(f)) merged.push_back(f);
   std::sort(merged.begin(), merged.end());
   merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
-  const auto m = static_cast<std::int64_t>(merged.size());
-#pragma omp parallel for schedule(dynamic, 64) if (m > kParallelMin)
-  for (std::int64_t i = 0; i < m; ++i)
-    samples_.evaluate_face(mesh_, probe_, merged[static_cast<std::size_t>(i)]);
+  samples_.evaluate_faces(mesh_, probe_, merged);
 }
 
 void Adapter::split_pass(bool initial) {
@@ -315,10 +312,7 @@ void Adapter::split_pass(bool initial) {
     }
     tracker_->touched.clear();
     mesh_.split(f);
-    for (Face t : tracker_->touched) {
-      if (!mesh_.is_alive(t)) continue;
-      samples_.evaluate_face(mesh_, probe_, t);
-    }
+    samples_.evaluate_faces(mesh_, probe_, tracker_->touched);
     for (Face t : tracker_->touched) {
       if (!mesh_.is_alive(t)) continue;
       const double u = split_urgency(t, initial);

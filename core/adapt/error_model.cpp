@@ -26,15 +26,18 @@ void QuadraticErrorModel::add(const Vec3& b, const Vec3& residual) {
   sample_max_ = std::max(sample_max_, residual.norm());
 }
 
-double QuadraticErrorModel::estimate() const {
-  if (count_ < 3) return sample_max_;
+QuadraticErrorModel::Result QuadraticErrorModel::evaluate() const {
+  const Result unresolved{sample_max_, false};
+  if (count_ < 3) return unresolved;
+  // An exact zero residual everywhere (a flat face of a plane) needs no model.
+  if (sum_squares_ == 0.0) return {0.0, true};
   const Eigen::LDLT<Eigen::Matrix3d> solver(normal_);
   // Samples crowded along one edge leave a coefficient undetermined: trust the samples.
-  if (solver.info() != Eigen::Success || solver.rcond() < 1e-6) return sample_max_;
+  if (solver.info() != Eigen::Success || solver.rcond() < 1e-6) return unresolved;
   const Eigen::Matrix3d coefficients = solver.solve(moment_);  // row e: edge e's vector
   // Least squares: the explained part of sum |r|^2 is trace(C^T M).
   const double explained = (coefficients.transpose() * moment_).trace();
-  if (count_ > 3 && explained < kMinExplained * sum_squares_) return sample_max_;
+  if (count_ > 3 && explained < kMinExplained * sum_squares_) return unresolved;
   double model_max = 0.0;
   for (int i = 0; i <= kLatticeOrder; ++i) {
     for (int j = 0; i + j <= kLatticeOrder; ++j) {
@@ -43,7 +46,7 @@ double QuadraticErrorModel::estimate() const {
       model_max = std::max(model_max, r.norm());
     }
   }
-  return std::max(sample_max_, model_max);
+  return {std::max(sample_max_, model_max), true};
 }
 
 }  // namespace dynamesh

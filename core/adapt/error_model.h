@@ -27,7 +27,14 @@ class QuadraticErrorModel {
   // not fit them (it explains under 70% of their squared residual: the residual is not
   // quadratic over this triangle, e.g. it spans half a ripple, and extrapolating the fit
   // would overshoot).
-  double estimate() const;
+  double estimate() const { return evaluate().error; }
+  struct Result {
+    double error = 0.0;
+    // False when the samples could not determine or did not fit the model: the error is
+    // then only the largest sample, and more samples are needed to trust it.
+    bool resolved = false;
+  };
+  Result evaluate() const;
 
  private:
   Eigen::Matrix3d normal_ = Eigen::Matrix3d::Zero();  // sum of w w^T, w = (b1b2, b2b0, b0b1)

@@ -38,6 +38,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   face_head_.resize(capacity, kInvalidIndex);
   face_count_.resize(capacity, 0);
   face_error_.resize(capacity, 0.0);
+  face_dense_.resize(capacity, 0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -69,11 +70,12 @@ std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
 
 // Stratified: the barycentric triangle is cut into k^2 congruent cells (k(k+1)/2 upright,
 // k(k-1)/2 inverted), k^2 >= the target, and one uniformly jittered sample is drawn per cell.
-void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f) {
+void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count) {
   clear_face(f);
   face_error_[f] = 0.0;
-  const auto k =
-      static_cast<int>(std::ceil(std::sqrt(static_cast<double>(target_count(mesh, Face(f))))));
+  face_dense_[f] = min_count > 0;
+  const std::uint32_t n = std::max(target_count(mesh, Face(f)), min_count);
+  const auto k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   std::uint64_t state = mix(seed_ ^ mix(++patterns_drawn_));
   const double h = 1.0 / k;
   for (int i = 0; i < k; ++i) {
@@ -96,10 +98,11 @@ void SampleStore::reset(const Mesh48& mesh) {
   face_head_.assign(mesh.face_capacity(), kInvalidIndex);
   face_count_.assign(mesh.face_capacity(), 0);
   face_error_.assign(mesh.face_capacity(), 0.0);
+  face_dense_.assign(mesh.face_capacity(), 0);
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
-void SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f) {
+bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f) {
   const auto v = mesh.vertices(f);
   const Vec3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
   const Vec2 uv[3] = {mesh.uv(v[0]), mesh.uv(v[1]), mesh.uv(v[2])};
@@ -111,16 +114,39 @@ void SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     x.error = static_cast<float>(r.norm());
     model.add(b, r);
   }
-  face_error_[f.idx] = model.estimate();
+  const QuadraticErrorModel::Result r = model.evaluate();
+  face_error_[f.idx] = r.error;
+  return r.resolved;
+}
+
+void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
+                                 const std::vector<Face>& faces) {
+  grow_faces(mesh.face_capacity());
+  std::vector<Face> pending = faces;
+  std::vector<std::uint8_t> unresolved;
+  for (int round = 0; !pending.empty(); ++round) {
+    const auto n = static_cast<std::int64_t>(pending.size());
+    unresolved.assign(pending.size(), 0);
+#pragma omp parallel for schedule(dynamic, 256) if (n > kParallelMin)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Face f = pending[static_cast<std::size_t>(i)];
+      if (mesh.is_alive(f))
+        unresolved[static_cast<std::size_t>(i)] = !evaluate_face(mesh, probe, f);
+    }
+    // Densify sequentially (the pool is shared), then measure those faces again.
+    std::vector<Face> next;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      const Face f = pending[i];
+      if (!unresolved[i] || face_count_[f.idx] >= kMaxSamplesPerFace) continue;
+      draw_pattern(mesh, f.idx, std::min(4 * face_count_[f.idx], kMaxSamplesPerFace));
+      next.push_back(f);
+    }
+    pending.swap(next);
+  }
 }
 
 void SampleStore::evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe) {
-  grow_faces(mesh.face_capacity());
-  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-#pragma omp parallel for schedule(dynamic, 512) if (n > kParallelMin)
-  for (std::int64_t f = 0; f < n; ++f)
-    if (mesh.is_alive(Face(static_cast<std::uint32_t>(f))))
-      evaluate_face(mesh, probe, Face(static_cast<std::uint32_t>(f)));
+  evaluate_faces(mesh, probe, mesh.live_faces());
 }
 
 double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
@@ -147,7 +173,7 @@ std::size_t SampleStore::refresh_patterns(const Mesh48& mesh) {
   std::size_t redrawn = 0;
   for (Face f : mesh.live_faces()) {
     const std::uint32_t target = target_count(mesh, f), n = face_count_[f.idx];
-    if (n == 0 || 2 * n < target || n > 2 * target) {
+    if (n == 0 || 2 * n < target || (n > 2 * target && !face_dense_[f.idx])) {
       draw_pattern(mesh, f.idx);
       ++redrawn;
     }

@@ -31,7 +31,7 @@ struct SmoothingOptions {
   double min_angle_deg = 5.0;  // guard
   // Centroid weights: inverse edge length (keeps the 4-8 mesh's grading; default) or
   // uniform (the paper's plain one-ring centroid).
-  bool scale_invariant_weights = true;
+  bool scale_invariant_weights = false;
 };
 
 struct SmoothingResult {

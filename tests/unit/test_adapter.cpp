@@ -82,8 +82,9 @@ TEST(Adapter, DenseMeasurementStaysWithinTolerance) {
 
 // Measures, outside the adapter, the error every possible weld would leave: a dense
 // measurement of the two parent triangles it would restore. None may be clearly below
-// T - eps. "Clearly": 5% below, the accuracy of the adapter's quadratic error estimate on
-// these smooth surfaces.
+// T - eps. "Clearly": by more than the accuracy of the adapter's error estimate, the same
+// 10% the dense test above allows in the other direction (kSparseSamplingSlack); on the
+// twist at t = 0.3 the estimate reads up to 7% high near the threshold.
 TEST(Adapter, WeldPassRunsToCompletion) {
   const AdaptOptions o = options_with(0.008);
   std::mt19937_64 rng(5);
@@ -103,7 +104,7 @@ TEST(Adapter, WeldPassRunsToCompletion) {
         const Vec2 uv[3] = {mesh.uv(pv[0]), mesh.uv(pv[1]), mesh.uv(pv[2])};
         worst = std::max(worst, test::dense_triangle_error(*run.surface, p, uv, 400, rng));
       }
-      too_fine += worst < (o.threshold - o.epsilon) * 0.95;
+      too_fine += worst < (o.threshold - o.epsilon) / kSparseSamplingSlack;
     }
     EXPECT_GT(weldable, 10u) << scene;
     EXPECT_EQ(too_fine, 0u) << scene << ": " << too_fine << " of " << weldable
