@@ -1,5 +1,6 @@
 #include "core/surface/scene_registry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -179,11 +180,14 @@ std::string scene_help() {
     out << "    suggested: threshold " << s.suggested_threshold << ", density "
         << s.suggested_density
         << (s.parameters_depend_on_input ? "; ranges depend on the input" : "") << '\n';
+    std::size_t name_width = 7;  // the columns line up within a scene
+    for (const SurfaceParameter& p : s.parameters)
+      name_width = std::max(name_width, p.name.size() + 2);
     for (const SurfaceParameter& p : s.parameters) {
       std::ostringstream range;
       range << '[' << p.min << ", " << p.max << ']';
-      out << "    " << std::left << std::setw(7) << p.name << std::setw(10) << p.value
-          << std::setw(16) << range.str() << p.description << '\n';
+      out << "    " << std::left << std::setw(static_cast<int>(name_width)) << p.name
+          << std::setw(10) << p.value << std::setw(16) << range.str() << p.description << '\n';
     }
   }
   return out.str();
