@@ -7,6 +7,8 @@
 #include <ostream>
 
 #include "app/cli/run_summary.h"
+#include "app/offscreen/offscreen_render.h"
+#include "app/render/color_mode.h"
 #include "core/adapt/adapter.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
@@ -48,10 +50,6 @@ void check_outputs(const RunOptions& o) {
     if (ec || !fs::is_directory(*dir))
       throw UsageError("cannot create directory " + *dir + ": " + ec.message());
   }
-  if (!o.render_dir.empty())
-    throw UsageError(
-        "--render is not available yet in this build (offscreen rendering lands "
-        "with the viewer); use --export DIR for meshes");
 }
 
 CriterionList criteria_for(const RunOptions& o, const Surface& surface) {
@@ -70,10 +68,51 @@ void log_step(std::ostream& log, const StepStats& s, int steps) {
   log.unsetf(std::ios::floatfield);
 }
 
+// What a snapshot must carry for the chosen colour mode.
+SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
+  SnapshotFields f;
+  f.curvature = o.color == "curvature";
+  f.valence = o.color == "valence";
+  f.level = o.color == "level";
+  if (o.color == "intensity") {
+    const auto q = surface.point_quantities();
+    if (std::find(q.begin(), q.end(), "intensity") == q.end())
+      throw UsageError("--color intensity needs a scene with MR intensity (--scene mri)");
+    f.quantities = {"intensity"};
+  }
+  return f;
+}
+
+// Offscreen frames (--render): one renderer for the whole run, so that only what changed
+// goes to the GPU and the camera fitted to the first frame stays put while the mesh moves.
+class FrameRenderer {
+ public:
+  FrameRenderer(const RunOptions& o, double threshold) : dir_(o.render_dir) {
+    options_.width = o.width;
+    options_.height = o.height;
+    options_.style.mode = *parse_color_mode(o.color);
+    options_.style.colors.threshold = static_cast<float>(threshold);
+  }
+  void render(const MeshSnapshot& snap, std::uint64_t step);
+  int frames() const { return frames_; }
+
+ private:
+  std::string dir_;
+  OffscreenOptions options_;
+  std::unique_ptr<OffscreenRenderer> renderer_;
+  int frames_ = 0;
+};
+
 std::string frame_name(const std::string& dir, std::uint64_t step, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%05llu.%s", static_cast<unsigned long long>(step), ext);
   return (fs::path(dir) / name).string();
+}
+
+void FrameRenderer::render(const MeshSnapshot& snap, std::uint64_t step) {
+  if (!renderer_) renderer_ = std::make_unique<OffscreenRenderer>();
+  renderer_->render_to_png(snap, options_, frame_name(dir_, step, "png"));
+  ++frames_;
 }
 
 }  // namespace
@@ -92,6 +131,9 @@ int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
     }
   }
 
+  const SnapshotFields fields = fields_for(o, *surface);
+  std::unique_ptr<FrameRenderer> frames;
+  if (!o.render_dir.empty()) frames = std::make_unique<FrameRenderer>(o, o.adapt.threshold);
   surface->set_time(o.t0);
   Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
   RunSummary summary;
@@ -108,15 +150,25 @@ int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
       const CheckReport report = adapter.mesh().check();
       if (!report.ok()) throw std::logic_error("mesh invariants broken: " + report.summary(5));
     }
-    if (!o.export_dir.empty() && s.step % static_cast<std::uint64_t>(o.export_every) == 0)
-      write_ply(frame_name(o.export_dir, s.step, "ply"), adapter.snapshot());
+    if (s.step % static_cast<std::uint64_t>(o.export_every) != 0) return;
+    if (!o.export_dir.empty() || frames) {
+      const MeshSnapshot snap = adapter.snapshot(fields);
+      if (!o.export_dir.empty()) write_ply(frame_name(o.export_dir, s.step, "ply"), snap);
+      if (frames) frames->render(snap, s.step);
+    }
   };
-  record(adapter.initialize());
-  for (int i = 1; i <= o.steps; ++i) {
-    const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
-    const StepStats& s = adapter.step(t);
-    step_seconds.push_back(s.seconds.total);
-    record(s);
+  // A surface that turns bad during the run (a formula that becomes NaN at some t) throws
+  // std::invalid_argument before the mesh is touched: bad input, exit status 2.
+  try {
+    record(adapter.initialize());
+    for (int i = 1; i <= o.steps; ++i) {
+      const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
+      const StepStats& s = adapter.step(t);
+      step_seconds.push_back(s.seconds.total);
+      record(s);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   summary.last = adapter.stats();
   if (step_seconds.empty()) step_seconds.push_back(summary.last.seconds.total);
@@ -124,7 +176,9 @@ int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
                    step_seconds.end());
   summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
   summary.quality = measure_quality(adapter.mesh());
-  if (!o.export_final_path.empty()) write_mesh(o.export_final_path, adapter.snapshot());
+  if (!o.export_final_path.empty()) write_mesh(o.export_final_path, adapter.snapshot(fields));
+  if (frames && !o.quiet)
+    log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
   if (csv) csv->close();
   if (summary.budget_hit && !o.quiet)
     log << "note: the triangle budget (--max-triangles " << o.adapt.max_triangles

@@ -73,7 +73,24 @@ const std::map<std::string, Setter>& valued_options() {
       {"--volume", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("volume", v); }},
       {"--implicit",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("implicit", v); }},
-      {"--height", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("height", v); }},
+      // --height is both the image height (DESIGN.md, --render) and the height-field formula
+      // (expr): a bare whole number is the former. --size and --height-field are unambiguous.
+      {"--height",
+       [](RunOptions& o, auto& k, auto& v) {
+         if (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos)
+           o.height = static_cast<int>(parse_integer(k, v));
+         else
+           o.scene_text.emplace_back("height", v);
+       }},
+      {"--height-field",
+       [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("height", v); }},
+      {"--size",
+       [](RunOptions& o, auto& k, auto& v) {
+         const auto x = v.find('x');
+         if (x == std::string::npos) throw UsageError(k + " expects WIDTHxHEIGHT, e.g. 1920x1080");
+         o.width = static_cast<int>(parse_integer(k, v.substr(0, x)));
+         o.height = static_cast<int>(parse_integer(k, v.substr(x + 1)));
+       }},
       {"--parametric",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("parametric", v); }},
       {"--bounds", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("bounds", v); }},
@@ -93,8 +110,6 @@ const std::map<std::string, Setter>& valued_options() {
       {"--render", [](RunOptions& o, auto&, auto& v) { o.render_dir = v; }},
       {"--width",
        [](RunOptions& o, auto& k, auto& v) { o.width = static_cast<int>(parse_integer(k, v)); }},
-      {"--height",
-       [](RunOptions& o, auto& k, auto& v) { o.height = static_cast<int>(parse_integer(k, v)); }},
       {"--color", [](RunOptions& o, auto&, auto& v) { o.color = v; }},
   };
   return table;
@@ -180,7 +195,8 @@ Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
   --param KEY=VALUE      set a scene parameter (repeatable; 'dynamesh-cli scenes' lists them)
   --volume FILE          mri: a NIfTI brain volume (.nii or .nii.gz)
-  --implicit EXPR | --height EXPR | --parametric "X;Y;Z"   expr: a typed surface
+  --implicit EXPR | --height-field EXPR | --parametric "X;Y;Z"   expr: a typed surface
+                         (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh
 Time:
   --t0 T0 --t1 T1        animation interval [0, 1]
@@ -201,9 +217,11 @@ Adaptation:
 Output:
   --stats FILE.csv       one row per step (step 0 is the initial adaptation)
   --export-final FILE    the final mesh (.ply binary with per-vertex error, or .obj)
-  --export DIR           a PLY every --export-every K steps  [1]
-  --render DIR           PNG frames, offscreen, with --width W --height H
-                         --color error|curvature|intensity|valence|level|shaded
+  --export DIR           a PLY (with the --color field) every --export-every K steps  [1]
+  --render DIR           a PNG every --export-every K steps, rendered offscreen (no display
+                         needed), --size WxH or --width W --height H  [1280x960]
+  --color MODE           error | curvature | intensity (mri) | valence | level | shaded
+                         [error: yellow = none, green, red = at or beyond T]
   --check                verify the mesh invariants after every step (slow)
   --quiet                no progress lines
 )";

@@ -36,7 +36,7 @@ void Mesh48::reserve(std::size_t vertices, std::size_t faces) {
   faces_.reserve(faces);
   positions_.reserve(vertices);
   uvs_.reserve(vertices);
-  vertex_corner_.reserve(vertices);
+  vertex_face_.reserve(vertices);
   parent_a_.reserve(vertices);
   parent_b_.reserve(vertices);
   level_.reserve(vertices);
@@ -62,7 +62,7 @@ std::uint32_t Mesh48::allocate_vertex() {
   }
   positions_.emplace_back(Vec3::Zero());
   uvs_.emplace_back(Vec2::Zero());
-  vertex_corner_.push_back(kInvalidIndex);
+  vertex_face_.push_back(kInvalidIndex);
   parent_a_.push_back(kInvalidIndex);
   parent_b_.push_back(kInvalidIndex);
   level_.push_back(0);
@@ -76,9 +76,6 @@ void Mesh48::set_face(std::uint32_t f, std::uint32_t a, std::uint32_t b, std::ui
   r.v[1] = b;
   r.v[2] = c;
   r.depth = depth;
-  vertex_corner_[a] = 3 * f;
-  vertex_corner_[b] = 3 * f + 1;
-  vertex_corner_[c] = 3 * f + 2;
 }
 
 void Mesh48::link(std::uint32_t face_a, int local_a, std::uint32_t halfedge_b) {
@@ -100,7 +97,7 @@ Mesh48 Mesh48::from_base_triangles(std::vector<Vec3> positions, std::vector<Vec2
   Mesh48 mesh;
   mesh.positions_ = std::move(positions);
   mesh.uvs_ = std::move(uvs);
-  mesh.vertex_corner_.assign(nv, kInvalidIndex);
+  mesh.vertex_face_.assign(nv, kInvalidIndex);
   mesh.parent_a_.assign(nv, kInvalidIndex);
   mesh.parent_b_.assign(nv, kInvalidIndex);
   mesh.level_.assign(nv, 0);
@@ -121,6 +118,7 @@ Mesh48 Mesh48::from_base_triangles(std::vector<Vec3> positions, std::vector<Vec2
       throw std::invalid_argument("base mesh: triangle " + std::to_string(f) + " repeats a vertex");
     }
     mesh.set_face(f, t[0], t[1], t[2], 0);
+    for (std::uint32_t v : t) mesh.vertex_face_[v] = f;
     for (int i = 0; i < 3; ++i) {
       const auto [it, fresh] = halfedge_of.emplace(edge_key(t[next(i)], t[prev(i)]), 3 * f + i);
       if (!fresh) {
@@ -142,7 +140,7 @@ Mesh48 Mesh48::from_base_triangles(std::vector<Vec3> positions, std::vector<Vec2
   mesh.n_live_vertices_ = nv;
 
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (mesh.vertex_corner_[v] == kInvalidIndex) {
+    if (mesh.vertex_face_[v] == kInvalidIndex) {
       throw std::invalid_argument("base mesh: vertex " + std::to_string(v) +
                                   " is used by no triangle");
     }
@@ -201,8 +199,8 @@ void Mesh48::incident_faces(Vertex v, std::vector<Face>& faces) const {
 std::vector<Vertex> Mesh48::live_vertices() const {
   std::vector<Vertex> out;
   out.reserve(n_live_vertices_);
-  for (std::uint32_t v = 0; v < vertex_corner_.size(); ++v)
-    if (vertex_corner_[v] != kInvalidIndex) out.emplace_back(v);
+  for (std::uint32_t v = 0; v < vertex_face_.size(); ++v)
+    if (vertex_face_[v] != kInvalidIndex) out.emplace_back(v);
   return out;
 }
 
@@ -254,6 +252,8 @@ void Mesh48::bisect_half(Bisection& half, std::uint32_t m) {
   const auto depth = static_cast<std::uint8_t>(old.depth + 1);
   set_face(p, m, old.v[0], old.v[1], depth);   // (m, apex, a)
   set_face(c1, m, old.v[2], old.v[0], depth);  // (m, b, apex)
+  // apex and a are still in slot p; b left it.
+  if (vertex_face_[old.v[2]] == p) vertex_face_[old.v[2]] = c1;
   link(p, 0, old.twin[2]);
   link(c1, 0, old.twin[1]);
   link(p, 2, 3 * c1 + 1);
@@ -272,6 +272,7 @@ Vertex Mesh48::split_diamond(Face f) {
   parent_a_[m] = a;
   parent_b_[m] = b;
   level_[m] = static_cast<std::uint8_t>(depth + 1);
+  vertex_face_[m] = f.idx;
 
   DiamondChange change;
   change.vertex = Vertex(m);
@@ -338,7 +339,7 @@ bool Mesh48::weld(Vertex v) {
 // The star holds the faces around v counter-clockwise, (v, n_i, n_i+1). The children of one
 // parent face share a non-parent ring vertex: (m, apex, a) follows (m, b, apex).
 bool Mesh48::plan_weld(Vertex v, DiamondChange& change) const {
-  if (v.idx >= vertex_corner_.size() || !is_alive(v) || is_base(v)) return false;
+  if (v.idx >= vertex_face_.size() || !is_alive(v) || is_base(v)) return false;
   std::array<Corner, 4> star;
   const int count = collect_weld_star(v, star);
   if (count == 0) return false;
@@ -376,6 +377,10 @@ void Mesh48::apply_weld(const DiamondChange& change) {
     const std::uint32_t p = half.parent.idx;
     const auto& pv = half.parent_vertices;
     set_face(p, pv[0].idx, pv[1].idx, pv[2].idx, static_cast<std::uint8_t>(c0.depth - 1));
+    // apex and x stay in slot p; apex and y leave the freed child.
+    const std::uint32_t freed = half.children[1].idx;
+    if (vertex_face_[pv[0].idx] == freed) vertex_face_[pv[0].idx] = p;
+    if (vertex_face_[pv[2].idx] == freed) vertex_face_[pv[2].idx] = p;
     faces_[p].twin[0] = kInvalidIndex;
     link(p, 1, c1.twin[0]);
     link(p, 2, c0.twin[0]);
@@ -385,7 +390,7 @@ void Mesh48::apply_weld(const DiamondChange& change) {
   }
   if (change.count == 2) link(change.halves[0].parent.idx, 0, 3 * change.halves[1].parent.idx);
   const std::uint32_t v = change.vertex.idx;
-  vertex_corner_[v] = kInvalidIndex;
+  vertex_face_[v] = kInvalidIndex;
   parent_a_[v] = parent_b_[v] = kInvalidIndex;
   free_vertices_.push_back(v);
   --n_live_vertices_;

@@ -87,9 +87,9 @@ class Mesh48 {
   std::size_t n_vertices() const { return n_live_vertices_; }
   std::size_t n_faces() const { return n_live_faces_; }
   // Upper bounds of ids (for sizing per-element arrays indexed by id).
-  std::size_t vertex_capacity() const { return vertex_corner_.size(); }
+  std::size_t vertex_capacity() const { return vertex_face_.size(); }
   std::size_t face_capacity() const { return faces_.size(); }
-  bool is_alive(Vertex v) const { return vertex_corner_[v.idx] != kInvalidIndex; }
+  bool is_alive(Vertex v) const { return vertex_face_[v.idx] != kInvalidIndex; }
   bool is_alive(Face f) const { return faces_[f.idx].v[0] != kInvalidIndex; }
   void reserve(std::size_t vertices, std::size_t faces);
 
@@ -194,7 +194,9 @@ class Mesh48 {
   std::vector<FaceRecord> faces_;
   std::vector<Vec3> positions_;
   std::vector<Vec2> uvs_;
-  std::vector<std::uint32_t> vertex_corner_;  // 3 * face + local, kInvalidIndex when dead
+  // One face holding each vertex (its local index is found by comparison, so a split or weld
+  // only rewrites the entries of vertices that left a face); kInvalidIndex when dead.
+  std::vector<std::uint32_t> vertex_face_;
   std::vector<std::uint32_t> parent_a_, parent_b_;
   std::vector<std::uint8_t> level_;
   std::vector<std::uint32_t> free_faces_, free_vertices_;
@@ -205,8 +207,9 @@ class Mesh48 {
 // --- inline traversal ----------------------------------------------------------------------
 
 inline Corner Mesh48::corner(Vertex v) const {
-  const std::uint32_t c = vertex_corner_[v.idx];
-  return {Face(c / 3), static_cast<int>(c % 3)};
+  const std::uint32_t f = vertex_face_[v.idx];
+  const auto& r = faces_[f].v;
+  return {Face(f), r[0] == v.idx ? 0 : (r[1] == v.idx ? 1 : (r[2] == v.idx ? 2 : -1))};
 }
 
 inline Corner Mesh48::rotate_ccw(Corner c) const {

@@ -30,7 +30,7 @@ class Problems {
 CheckReport Mesh48::check() const {
   CheckReport report;
   Problems problem(report);
-  const std::size_t nv = vertex_corner_.size();
+  const std::size_t nv = vertex_face_.size();
   std::vector<int> corner_count(nv, 0);
   std::unordered_set<std::uint64_t> directed;
   directed.reserve(3 * n_live_faces_);
@@ -45,7 +45,7 @@ CheckReport Mesh48::check() const {
     ++live_faces;
     bool vertices_ok = true;
     for (int i = 0; i < 3; ++i) {
-      if (r.v[i] >= nv || vertex_corner_[r.v[i]] == kInvalidIndex) {
+      if (r.v[i] >= nv || vertex_face_[r.v[i]] == kInvalidIndex) {
         problem.add("face ", f, " uses dead or unknown vertex ", r.v[i]);
         vertices_ok = false;
       }
@@ -103,14 +103,18 @@ CheckReport Mesh48::check() const {
 
   std::size_t live_vertices = 0;
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (vertex_corner_[v] == kInvalidIndex) {
+    if (vertex_face_[v] == kInvalidIndex) {
       if (corner_count[v] != 0) problem.add("dead vertex ", v, " is used by a face");
       continue;
     }
     ++live_vertices;
     const Vertex vh(v);
+    if (vertex_face_[v] >= faces_.size() || faces_[vertex_face_[v]].v[0] == kInvalidIndex) {
+      problem.add("vertex ", v, " points at a dead or unknown face");
+      continue;
+    }
     const Corner c = corner(vh);
-    if (c.face.idx >= faces_.size() || faces_[c.face.idx].v[c.local] != v) {
+    if (c.face.idx >= faces_.size() || c.local < 0 || faces_[c.face.idx].v[c.local] != v) {
       problem.add("vertex ", v, " points at a face that does not hold it");
       continue;
     }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/surface/expression/expr_scene.h"
 #include "core/surface/scenes/capsule_bend_scene.h"
 #include "core/surface/scenes/sinc_scene.h"
 #include "core/surface/scenes/sphere_scene.h"
@@ -36,13 +37,23 @@ SceneRegistration builtin() {
   return r;
 }
 
+// expr's parameters come from its formula: none are listed.
+SceneRegistration expr_registration() {
+  SceneRegistration r;
+  r.name = ExprScene::kName;
+  r.description = ExprScene::kDescription;
+  r.build = [](const SceneRequest& request) { return make_expr_scene(request.text_options); };
+  r.listed_parameters.emplace();
+  return r;
+}
+
 // A static library drops object files nobody references, so the built-in scenes are listed
 // here rather than registering themselves from their own files.
 struct Catalogue {
   std::mutex mutex;
   std::vector<SceneRegistration> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
-                                         builtin<SincScene>(), builtin<TwistScene>(),
-                                         mri_scene_registration()};
+                                         builtin<SincScene>(),   builtin<TwistScene>(),
+                                         expr_registration(),    mri_scene_registration()};
 };
 
 Catalogue& catalogue() {

@@ -24,8 +24,11 @@ struct DenseError {
 inline double distance_at(const Surface& surface, const Vec3 p[3], const Vec2 uv[3], double b0,
                           double b1, double b2) {
   const Vec3 x = b0 * p[0] + b1 * p[1] + b2 * p[2];
-  if (const auto* par = dynamic_cast<const ParametricSurface*>(&surface))
-    return distance_to_surface(*par, x, b0 * uv[0] + b1 * uv[1] + b2 * uv[2]);
+  if (const auto* par = dynamic_cast<const ParametricSurface*>(&surface)) {
+    // Continuous across a periodic seam.
+    const Vec2 uv1 = par->unwrap_near(uv[1], uv[0]), uv2 = par->unwrap_near(uv[2], uv[0]);
+    return distance_to_surface(*par, x, par->wrap_into_domain(b0 * uv[0] + b1 * uv1 + b2 * uv2));
+  }
   return distance_to_surface(dynamic_cast<const ImplicitSurface&>(surface), x);
 }
 

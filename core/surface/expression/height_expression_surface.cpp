@@ -1,0 +1,75 @@
+#include "core/surface/expression/height_expression_surface.h"
+
+#include <stdexcept>
+
+#include "core/mesh/base_meshes.h"
+#include "core/surface/expression/finite_differences.h"
+#include "core/surface/expression/formula_checks.h"
+
+namespace dynamesh {
+
+namespace {
+
+constexpr int kScan = 33;      // grid points per side of the set_time() scan (~1000 evaluations)
+constexpr int kBaseQuads = 8;  // base grid, as for the sinc scene
+
+}  // namespace
+
+HeightExpressionSurface::HeightExpressionSurface(const std::string& formula, const Vec2& domain_min,
+                                                 const Vec2& domain_max)
+    : formula_(formula), f_({formula}, {"x", "z", "t"}, "height formula") {
+  if (!(domain_min.array() < domain_max.array()).all() || !(domain_max - domain_min).allFinite())
+    throw std::invalid_argument(
+        "--domain is empty or not finite: expected xmin < xmax, zmin < zmax");
+  domain_.min = domain_min;
+  domain_.max = domain_max;
+  bounds_ = scan(0.0);
+}
+
+Box3 HeightExpressionSurface::scan(double t) const {
+  Box3 box = scan_parametric(
+      [&](const Vec2& uv) {
+        const double x[3] = {uv.x(), uv.y(), t};
+        return Vec3(uv.x(), f_.value(x), uv.y());
+      },
+      "height formula '" + formula_ + "'", domain_, t, kScan);
+  // The scan sees grid points only; a margin of a tenth of the height range (and of the
+  // domain's size for a flat field) keeps the box conservative for smooth formulas.
+  const double margin = 0.1 * std::max(box.size().y(), 1e-3 * (domain_.max - domain_.min).norm());
+  box.min.y() -= margin;
+  box.max.y() += margin;
+  return box;
+}
+
+void HeightExpressionSurface::set_time(double t) {
+  const Box3 box = scan(t);  // throws before anything changes
+  bounds_ = box;
+  Surface::set_time(t);
+}
+
+Vec3 HeightExpressionSurface::position(const Vec2& uv) const {
+  const double x[3] = {uv.x(), uv.y(), time()};
+  return {uv.x(), f_.value(x), uv.y()};
+}
+
+ParametricDerivatives HeightExpressionSurface::derivatives(const Vec2& uv) const {
+  const double t = time();
+  ParametricDerivatives d = parametric_differences(
+      [&](const Vec2& q) {
+        const double x[3] = {q.x(), q.y(), t};
+        return Vec3(q.x(), f_.value(x), q.y());
+      },
+      uv, domain_.max - domain_.min);
+  // x = u and z = v exactly; the quotients above carry rounding there.
+  d.su.x() = 1.0, d.su.z() = 0.0, d.sv.x() = 0.0, d.sv.z() = 1.0;
+  d.suu.x() = d.suu.z() = d.suv.x() = d.suv.z() = d.svv.x() = d.svv.z() = 0.0;
+  return d;
+}
+
+Mesh48 HeightExpressionSurface::base_mesh() const {
+  Mesh48 mesh = make_grid_mesh(kBaseQuads, kBaseQuads, domain_.min, domain_.max);
+  for (const Vertex v : mesh.live_vertices()) mesh.position(v) = position(mesh.uv(v));
+  return mesh;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,39 @@
+// An open height field typed as a formula: y = f(x, z, t) over the domain [xmin, xmax] x
+// [zmin, zmax] (--height EXPR --domain ...), as a parametric surface with (u, v) = (x, z):
+// S(u, v) = (u, f(u, v, t), v), so the normal Su x Sv points to -y, as for the sinc scene, and
+// the grid base mesh (counter-clockwise in (u, v)) agrees with it. Derivatives are central
+// differences with steps relative to the domain; bounds() comes from a grid scan at each
+// set_time(), which also throws (before the time changes) where f is not finite.
+#pragma once
+
+#include <string>
+
+#include "core/surface/expression/expression.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+class HeightExpressionSurface final : public ParametricSurface {
+ public:
+  HeightExpressionSurface(const std::string& formula, const Vec2& domain_min,
+                          const Vec2& domain_max);
+
+  std::string name() const override { return "expr"; }
+  void set_time(double t) override;
+  Box3 bounds() const override { return bounds_; }
+  Mesh48 base_mesh() const override;
+
+  ParameterDomain domain() const override { return domain_; }
+  Vec3 position(const Vec2& uv) const override;
+  ParametricDerivatives derivatives(const Vec2& uv) const override;
+
+ private:
+  Box3 scan(double t) const;
+
+  std::string formula_;
+  Expression f_;
+  ParameterDomain domain_;
+  Box3 bounds_;
+};
+
+}  // namespace dynamesh

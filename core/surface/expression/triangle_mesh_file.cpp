@@ -1,0 +1,258 @@
+#include "core/surface/expression/triangle_mesh_file.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace dynamesh {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::invalid_argument("base mesh " + path + ": " + what);
+}
+
+// Adds the polygon `corners` as a triangle fan, checking indices.
+void add_polygon(const std::string& path, TriangleMesh& mesh,
+                 const std::vector<std::int64_t>& corners, std::size_t vertex_count) {
+  if (corners.size() < 3)
+    fail(path, "a face has " + std::to_string(corners.size()) + " corners (at least 3 needed)");
+  for (std::int64_t c : corners)
+    if (c < 0 || static_cast<std::size_t>(c) >= vertex_count)
+      fail(path,
+           "a face refers to vertex " + std::to_string(c) + " of " + std::to_string(vertex_count));
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+    mesh.triangles.push_back({static_cast<std::uint32_t>(corners[0]),
+                              static_cast<std::uint32_t>(corners[k]),
+                              static_cast<std::uint32_t>(corners[k + 1])});
+}
+
+TriangleMesh read_obj(const std::string& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // fanned below, with index checks
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string error = reader.Error();
+    std::replace(error.begin(), error.end(), '\n', ' ');
+    fail(path, "not a readable OBJ file (" + error + ")");
+  }
+  TriangleMesh mesh;
+  const auto& v = reader.GetAttrib().vertices;
+  for (std::size_t i = 0; i + 2 < v.size(); i += 3)
+    mesh.positions.emplace_back(v[i], v[i + 1], v[i + 2]);
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    std::size_t offset = 0;
+    for (unsigned char n : shape.mesh.num_face_vertices) {
+      std::vector<std::int64_t> corners;
+      for (std::size_t k = 0; k < n; ++k)
+        corners.push_back(shape.mesh.indices[offset + k].vertex_index);
+      offset += n;
+      add_polygon(path, mesh, corners, mesh.positions.size());
+    }
+  }
+  return mesh;
+}
+
+// ---- PLY ----------------------------------------------------------------------------------
+
+enum class PlyFormat { kAscii, kLittle, kBig };
+
+int type_size(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+      type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+struct PlyProperty {
+  std::string name, type;
+  bool is_list = false;
+  std::string count_type;
+};
+
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+class PlyValueReader {
+ public:
+  PlyValueReader(std::istream& in, PlyFormat format, const std::string& path)
+      : in_(in), format_(format), path_(path) {}
+
+  double read(const std::string& type) {
+    if (format_ == PlyFormat::kAscii) {
+      double x = 0;
+      if (!(in_ >> x)) fail(path_, "ascii data ends early or holds a non-number");
+      return x;
+    }
+    unsigned char bytes[8];
+    const int n = type_size(type);
+    if (!in_.read(reinterpret_cast<char*>(bytes), n)) fail(path_, "binary data ends early");
+    if ((format_ == PlyFormat::kBig) != (std::endian::native == std::endian::big))
+      std::reverse(bytes, bytes + n);
+    auto as = [&](auto value) {
+      std::memcpy(&value, bytes, sizeof value);
+      return static_cast<double>(value);
+    };
+    if (type == "char" || type == "int8") return as(std::int8_t{});
+    if (type == "uchar" || type == "uint8") return as(std::uint8_t{});
+    if (type == "short" || type == "int16") return as(std::int16_t{});
+    if (type == "ushort" || type == "uint16") return as(std::uint16_t{});
+    if (type == "int" || type == "int32") return as(std::int32_t{});
+    if (type == "uint" || type == "uint32") return as(std::uint32_t{});
+    if (type == "float" || type == "float32") return as(float{});
+    return as(double{});
+  }
+
+ private:
+  std::istream& in_;
+  PlyFormat format_;
+  const std::string& path_;
+};
+
+TriangleMesh read_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file");
+  std::string line;
+  if (!std::getline(in, line) || line.substr(0, 3) != "ply" ||
+      line.find_first_not_of(" \r", 3) != std::string::npos)
+    fail(path, "not a PLY file (the first line must be 'ply')");
+  PlyFormat format = PlyFormat::kAscii;
+  bool format_seen = false;
+  std::vector<PlyElement> elements;
+  for (;;) {
+    if (!std::getline(in, line)) fail(path, "the header has no end_header line");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "end_header") break;
+    if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
+    if (keyword == "format") {
+      std::string name, version;
+      words >> name >> version;
+      if (name == "ascii")
+        format = PlyFormat::kAscii;
+      else if (name == "binary_little_endian")
+        format = PlyFormat::kLittle;
+      else if (name == "binary_big_endian")
+        format = PlyFormat::kBig;
+      else
+        fail(path, "unknown PLY format '" + name + "'");
+      format_seen = true;
+    } else if (keyword == "element") {
+      PlyElement e;
+      long long count = -1;
+      words >> e.name >> count;
+      if (e.name.empty() || count < 0) fail(path, "malformed header line '" + line + "'");
+      e.count = static_cast<std::size_t>(count);
+      elements.push_back(e);
+    } else if (keyword == "property") {
+      if (elements.empty()) fail(path, "a property comes before any element");
+      PlyProperty p;
+      words >> p.type;
+      if (p.type == "list") {
+        p.is_list = true;
+        words >> p.count_type >> p.type;
+        if (type_size(p.count_type) == 0) fail(path, "unknown list count type in '" + line + "'");
+      }
+      words >> p.name;
+      if (type_size(p.type) == 0 || p.name.empty())
+        fail(path, "malformed property line '" + line + "'");
+      elements.back().properties.push_back(p);
+    } else {
+      fail(path, "unexpected header line '" + line + "'");
+    }
+  }
+  if (!format_seen) fail(path, "the header has no format line");
+
+  TriangleMesh mesh;
+  PlyValueReader reader(in, format, path);
+  bool vertices_read = false;
+  for (const PlyElement& e : elements) {
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    int xyz[3] = {-1, -1, -1};
+    int face_list = -1;
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const PlyProperty& p = e.properties[k];
+      for (int a = 0; a < 3; ++a)
+        if (is_vertex && !p.is_list && p.name == std::string(1, "xyz"[a]))
+          xyz[a] = static_cast<int>(k);
+      if (is_face && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"))
+        face_list = static_cast<int>(k);
+    }
+    if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0))
+      fail(path, "the vertex element lacks an x, y or z property");
+    if (is_face && face_list < 0) fail(path, "the face element lacks a vertex_indices list");
+    if (is_face && !vertices_read) fail(path, "faces come before vertices");
+    std::vector<std::int64_t> corners;
+    for (std::size_t i = 0; i < e.count; ++i) {
+      Vec3 p = Vec3::Zero();
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const PlyProperty& prop = e.properties[k];
+        if (!prop.is_list) {
+          const double x = reader.read(prop.type);
+          for (int a = 0; a < 3; ++a)
+            if (static_cast<int>(k) == xyz[a]) p[a] = x;
+          continue;
+        }
+        const double n = reader.read(prop.count_type);
+        if (!(n >= 0 && n <= 1e6 && n == std::floor(n))) fail(path, "a list has a bad length");
+        corners.clear();
+        for (int c = 0; c < static_cast<int>(n); ++c) {
+          const double index = reader.read(prop.type);
+          if (index != std::floor(index)) fail(path, "a face index is not a whole number");
+          corners.push_back(static_cast<std::int64_t>(index));
+        }
+        if (static_cast<int>(k) == face_list)
+          add_polygon(path, mesh, corners, mesh.positions.size());
+      }
+      if (is_vertex) mesh.positions.push_back(p);
+    }
+    vertices_read = vertices_read || is_vertex;
+  }
+  return mesh;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+TriangleMesh read_triangle_mesh(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
+  const std::string ext = lower_extension(path);
+  TriangleMesh mesh;
+  if (ext == ".obj")
+    mesh = read_obj(path);
+  else if (ext == ".ply")
+    mesh = read_ply(path);
+  else
+    fail(path, "unknown extension '" + ext + "'; use a .obj or .ply file");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!mesh.positions[i].allFinite())
+      fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+  if (mesh.triangles.empty()) fail(path, "the file holds no faces");
+  return mesh;
+}
+
+}  // namespace dynamesh

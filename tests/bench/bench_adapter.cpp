@@ -1,0 +1,105 @@
+// Cost of one adaptation step against its yardstick (DESIGN.md, "Quality bars"): the pure
+// cost of evaluating the surface once at every sample and every vertex, with the same
+// threads. Goal (issue 4): step / yardstick <= 1.5, and a 100 000-triangle step well under
+// 50 ms on the 2-core machine. Scenes twist and capsule-bend around t = 0.5, T = 1e-3.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "core/adapt/adapter.h"
+#include "core/surface/scene_registry.h"
+
+namespace dynamesh {
+namespace {
+
+struct Scene {
+  std::unique_ptr<Surface> surface;
+  std::unique_ptr<Adapter> adapter;
+};
+
+Scene adapted(const std::string& name, double threshold) {
+  Scene s;
+  s.surface = make_scene(name);
+  s.surface->set_time(0.5);
+  AdaptOptions o;
+  o.threshold = threshold;
+  o.epsilon = threshold / 4;
+  s.adapter = std::make_unique<Adapter>(*s.surface, o, default_criteria(name, 0.0, o, 0.0));
+  s.adapter->initialize();
+  return s;
+}
+
+// Every sample's and every vertex's position on the current mesh.
+std::vector<Vec3> evaluation_points(const Adapter& a) {
+  std::vector<Vec3> points;
+  const Mesh48& mesh = a.mesh();
+  for (Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    a.samples().for_each_sample(f, [&](const Vec3& b, double) {
+      points.push_back(b[0] * mesh.position(v[0]) + b[1] * mesh.position(v[1]) +
+                       b[2] * mesh.position(v[2]));
+    });
+  }
+  for (Vertex v : mesh.live_vertices()) points.push_back(mesh.position(v));
+  return points;
+}
+
+double yardstick_seconds(const ImplicitSurface& s, const std::vector<Vec3>& points) {
+  const auto n = static_cast<std::int64_t>(points.size());
+  double sink = 0;
+  const auto start = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) reduction(+ : sink)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Vec3 g;
+    sink += s.value_gradient(points[static_cast<std::size_t>(i)], g) + g[0];
+  }
+  benchmark::DoNotOptimize(sink);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_Step(benchmark::State& state, const std::string& name, double threshold) {
+  Scene s = adapted(name, threshold);
+  double t = 0.5, total = 0, yard = 0;
+  PhaseSeconds phases;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    t += 1e-3;  // a real, small deformation every step
+    const StepStats& st = s.adapter->step(t);
+    total += st.seconds.total;
+    phases.project += st.seconds.project;
+    phases.smooth += st.seconds.smooth;
+    phases.sample += st.seconds.sample;
+    phases.weld += st.seconds.weld;
+    phases.split += st.seconds.split;
+    state.PauseTiming();
+    yard += yardstick_seconds(static_cast<const ImplicitSurface&>(*s.surface),
+                              evaluation_points(*s.adapter));
+    state.ResumeTiming();
+    ++steps;
+  }
+  const auto per = [&](double x) { return 1e3 * x / static_cast<double>(steps); };
+  state.counters["triangles"] = static_cast<double>(s.adapter->mesh().n_faces());
+  state.counters["samples"] = static_cast<double>(s.adapter->samples().n_samples());
+  state.counters["step_ms"] = per(total);
+  state.counters["project_ms"] = per(phases.project);
+  state.counters["smooth_ms"] = per(phases.smooth);
+  state.counters["sample_ms"] = per(phases.sample);
+  state.counters["weld_ms"] = per(phases.weld);
+  state.counters["split_ms"] = per(phases.split);
+  state.counters["yardstick_ms"] = per(yard);
+  state.counters["ratio"] = total / yard;
+}
+
+BENCHMARK_CAPTURE(BM_Step, twist_T1e - 3, std::string("twist"), 1e-3)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20);
+BENCHMARK_CAPTURE(BM_Step, capsule_T1e - 3, std::string("capsule-bend"), 1e-3)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20);
+// About 100 000 triangles.
+BENCHMARK_CAPTURE(BM_Step, capsule_T2e - 4, std::string("capsule-bend"), 2e-4)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(10);
+
+}  // namespace
+}  // namespace dynamesh
