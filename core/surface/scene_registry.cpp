@@ -1,5 +1,6 @@
 #include "core/surface/scene_registry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -12,17 +13,11 @@
 #include "core/surface/scenes/sinc_scene.h"
 #include "core/surface/scenes/sphere_scene.h"
 #include "core/surface/scenes/twist_scene.h"
+#include "core/surface/volume/mri_scene.h"
 
 namespace dynamesh {
 
 namespace {
-
-struct Entry {
-  std::string name;
-  std::string description;
-  SceneFactory factory;
-  bool parameters_known_without_options = true;
-};
 
 void reject_text_options(const std::string& scene, const TextOptions& options) {
   if (options.empty()) return;
@@ -31,23 +26,34 @@ void reject_text_options(const std::string& scene, const TextOptions& options) {
 }
 
 template <class Scene>
-Entry builtin() {
-  return {Scene::kName, Scene::kDescription, [](const TextOptions& options) {
-            reject_text_options(Scene::kName, options);
-            return std::unique_ptr<Surface>(std::make_unique<Scene>());
-          }};
+SceneRegistration builtin() {
+  SceneRegistration r;
+  r.name = Scene::kName;
+  r.description = Scene::kDescription;
+  r.build = [](const SceneRequest& request) {
+    reject_text_options(Scene::kName, request.text_options);
+    return std::unique_ptr<Surface>(std::make_unique<Scene>());
+  };
+  return r;
 }
 
-Entry expr_entry() {
-  return {ExprScene::kName, ExprScene::kDescription, make_expr_scene, false};
+// expr's parameters come from its formula: none are listed.
+SceneRegistration expr_registration() {
+  SceneRegistration r;
+  r.name = ExprScene::kName;
+  r.description = ExprScene::kDescription;
+  r.build = [](const SceneRequest& request) { return make_expr_scene(request.text_options); };
+  r.listed_parameters.emplace();
+  return r;
 }
 
 // A static library drops object files nobody references, so the built-in scenes are listed
 // here rather than registering themselves from their own files.
 struct Catalogue {
   std::mutex mutex;
-  std::vector<Entry> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
-                             builtin<SincScene>(), builtin<TwistScene>(), expr_entry()};
+  std::vector<SceneRegistration> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
+                                         builtin<SincScene>(),   builtin<TwistScene>(),
+                                         expr_registration(),    mri_scene_registration()};
 };
 
 Catalogue& catalogue() {
@@ -55,9 +61,9 @@ Catalogue& catalogue() {
   return c;
 }
 
-std::string valid_names(const std::vector<Entry>& entries) {
+std::string valid_names(const std::vector<SceneRegistration>& entries) {
   std::string list;
-  for (const Entry& e : entries) list += (list.empty() ? "" : ", ") + e.name;
+  for (const SceneRegistration& e : entries) list += (list.empty() ? "" : ", ") + e.name;
   return list;
 }
 
@@ -72,10 +78,10 @@ ParameterOverrides last_value_per_key(const ParameterOverrides& overrides) {
   return unique;
 }
 
-// Applies every override; one rejected only because of a value another override changes is
-// retried after the others. Throws the first rejection that no order can fix.
+// Applies every override (one value per key); one rejected only because of a value another override
+// changes is retried after the others. Throws the first rejection that no order can fix.
 void apply_overrides(Surface& scene, const ParameterOverrides& overrides) {
-  ParameterOverrides pending = last_value_per_key(overrides);
+  ParameterOverrides pending = overrides;
   while (!pending.empty()) {
     ParameterOverrides failed;
     std::string first_error;
@@ -94,48 +100,73 @@ void apply_overrides(Surface& scene, const ParameterOverrides& overrides) {
 
 }  // namespace
 
-void register_scene(const std::string& name, const std::string& description, SceneFactory factory,
-                    bool parameters_known_without_options) {
+void register_scene(SceneRegistration registration) {
+  if (!registration.build) {
+    throw std::invalid_argument("scene '" + registration.name + "' has no builder");
+  }
   Catalogue& c = catalogue();
   const std::lock_guard lock(c.mutex);
-  for (const Entry& e : c.entries) {
-    if (e.name == name) throw std::invalid_argument("scene '" + name + "' is already registered");
+  for (const SceneRegistration& e : c.entries) {
+    if (e.name == registration.name) {
+      throw std::invalid_argument("scene '" + registration.name + "' is already registered");
+    }
   }
-  c.entries.push_back({name, description, std::move(factory), parameters_known_without_options});
+  c.entries.push_back(std::move(registration));
+}
+
+void register_scene(const std::string& name, const std::string& description, SceneFactory factory,
+                    bool parameters_known_without_options) {
+  SceneRegistration r;
+  r.name = name;
+  r.description = description;
+  if (factory) {
+    r.build = [factory = std::move(factory)](const SceneRequest& request) {
+      return factory(request.text_options);
+    };
+  }
+  if (!parameters_known_without_options) r.listed_parameters.emplace();
+  register_scene(std::move(r));
 }
 
 std::vector<SceneInfo> list_scenes() {
-  std::vector<Entry> entries;
+  std::vector<SceneRegistration> entries;
   {
     Catalogue& c = catalogue();
     const std::lock_guard lock(c.mutex);
     entries = c.entries;
   }
   std::vector<SceneInfo> infos;
-  for (const Entry& e : entries) {
-    SceneInfo info{e.name, e.description, {}};
-    if (e.parameters_known_without_options) info.parameters = e.factory({})->parameters();
+  for (const SceneRegistration& e : entries) {
+    SceneInfo info;
+    info.name = e.name;
+    info.description = e.description;
+    info.parameters = e.listed_parameters ? *e.listed_parameters : e.build({})->parameters();
+    info.suggested_threshold = e.suggestions.threshold;
+    info.suggested_density = e.suggestions.density;
+    info.parameters_depend_on_input = e.listed_parameters.has_value();
     infos.push_back(std::move(info));
   }
   return infos;
 }
 
 std::unique_ptr<Surface> make_scene(const std::string& name, const ParameterOverrides& overrides,
-                                    const TextOptions& text_options) {
-  SceneFactory factory;
+                                    const TextOptions& text_options,
+                                    const ProgressCallback& progress) {
+  SceneBuilder build;
   {
     Catalogue& c = catalogue();
     const std::lock_guard lock(c.mutex);
-    for (const Entry& e : c.entries) {
-      if (e.name == name) factory = e.factory;
+    for (const SceneRegistration& e : c.entries) {
+      if (e.name == name) build = e.build;
     }
-    if (!factory) {
+    if (!build) {
       throw std::invalid_argument("unknown scene '" + name +
                                   "'; valid scenes are: " + valid_names(c.entries));
     }
   }
-  std::unique_ptr<Surface> scene = factory(text_options);
-  apply_overrides(*scene, overrides);
+  const ParameterOverrides unique = last_value_per_key(overrides);
+  std::unique_ptr<Surface> scene = build({text_options, unique, progress});
+  apply_overrides(*scene, unique);
   scene->set_time(0.0);
   return scene;
 }
@@ -157,11 +188,17 @@ std::string scene_help() {
   std::ostringstream out;
   for (const SceneInfo& s : list_scenes()) {
     out << std::left << std::setw(14) << s.name << s.description << '\n';
+    out << "    suggested: threshold " << s.suggested_threshold << ", density "
+        << s.suggested_density
+        << (s.parameters_depend_on_input ? "; ranges depend on the input" : "") << '\n';
+    std::size_t name_width = 7;  // the columns line up within a scene
+    for (const SurfaceParameter& p : s.parameters)
+      name_width = std::max(name_width, p.name.size() + 2);
     for (const SurfaceParameter& p : s.parameters) {
       std::ostringstream range;
       range << '[' << p.min << ", " << p.max << ']';
-      out << "    " << std::left << std::setw(7) << p.name << std::setw(10) << p.value
-          << std::setw(16) << range.str() << p.description << '\n';
+      out << "    " << std::left << std::setw(static_cast<int>(name_width)) << p.name
+          << std::setw(10) << p.value << std::setw(16) << range.str() << p.description << '\n';
     }
   }
   return out.str();

@@ -9,34 +9,15 @@
 
 #include "core/surface/projection.h"
 #include "core/surface/volume/mri_surface.h"
-#include "test_nifti_files.h"
-#include "test_volume_fixtures.h"
+#include "test_mri_ball.h"
 
 namespace dynamesh {
 namespace {
 
-constexpr double kRadius = 20.0;
-const Vec3 kCentre(4.0, -3.0, 10.0);
-const Vec3 kSpacing(0.9, 1.0, 1.2);
-
-// A ball of T1-like intensity 60..100 (varying with height, so the colouring has something
-// to show) on a background of 0, stored as int16 with an oblique sform.
-std::filesystem::path write_ball_file() {
-  const auto path = test::scratch_dir("mri_ball") / "ball.nii.gz";
-  const VoxelGrid grid = test::oblique_grid({60, 54, 46}, kSpacing, 0.35, Vec3(1, 1, 0), kCentre);
-  std::vector<std::int16_t> values;
-  for (int k = 0; k < 46; ++k)
-    for (int j = 0; j < 54; ++j)
-      for (int i = 0; i < 60; ++i) {
-        const Vec3 p = grid.to_world(Vec3(i, j, k)) - kCentre;
-        values.push_back(
-            static_cast<std::int16_t>(p.norm() <= kRadius ? std::lround(80.0 + p.z()) : 0));
-      }
-  nifti_1_header h = test::make_header({60, 54, 46}, DT_INT16, 16);
-  test::set_sform(h, grid.linear, grid.offset);
-  test::write_nifti(path, h, values);
-  return path;
-}
+constexpr double kRadius = test::kBallRadius;
+const Vec3 kCentre = test::kBallCentre;
+const Vec3 kSpacing = test::kBallSpacing;
+using test::write_ball_file;
 
 class MriBall : public ::testing::Test {
  protected:

@@ -26,6 +26,7 @@ struct MriOptions {
 class MriSurface final : public ImplicitSurface {
  public:
   static constexpr const char* kName = "mri";
+  static constexpr const char* kIntensity = "intensity";
   static constexpr const char* kDescription =
       "brain isolayers at depth depth_max * t below the surface of a segmented MR volume "
       "(paper 4.5)";
@@ -49,6 +50,14 @@ class MriSurface final : public ImplicitSurface {
     return layers_.distance_gradient(p, gradient) + depth();
   }
   Mat3 hessian(const Vec3& p) const override;
+
+  // "intensity": the T1 intensity (trilinear), what the layers are coloured by.
+  std::vector<std::string> point_quantities() const override { return {kIntensity}; }
+  double point_quantity(const std::string& name, const Vec3& p) const override;
+
+  // Progress of re-segmenting when `threshold` changes; the registry clears the callback it
+  // was built with, so the surface never calls a reporter that its caller has destroyed.
+  void set_progress(ProgressCallback progress) { progress_ = std::move(progress); }
 
   double depth() const { return depth_max_ * time(); }
   double depth_max() const { return depth_max_; }

@@ -1,0 +1,82 @@
+#include "core/surface/volume/mri_scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/surface/volume/mri_surface.h"
+
+namespace dynamesh {
+namespace {
+
+constexpr const char* kVolumeOption = "volume";
+
+// The numbers the builder itself uses: building with the segmentation threshold avoids
+// segmenting and transforming twice. Out-of-range values are left to make_scene, whose
+// range check gives the usual message.
+void take_overrides(const ParameterOverrides& overrides, MriOptions& options) {
+  for (const auto& [key, value] : overrides) {
+    if (!std::isfinite(value) || value < 0.0) continue;
+    if (key == "threshold") options.threshold = value;
+    if (key == "depth_max") options.depth_max = value;
+  }
+}
+
+std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
+  MriOptions options;
+  bool volume_given = false;
+  for (const auto& [key, value] : request.text_options) {
+    if (key != kVolumeOption) {
+      throw std::invalid_argument("mri: unknown option '" + key +
+                                  "' (its only option is the volume: --volume FILE.nii[.gz])");
+    }
+    options.volume_path = value;
+    volume_given = true;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(options.volume_path, ec)) {
+    if (!volume_given) {
+      throw std::invalid_argument(
+          std::string("mri: the default volume ") + kDefaultMriVolume +
+          " is not installed; install the Debian package mricron-data or pass --volume "
+          "FILE.nii[.gz]");
+    }
+    throw std::invalid_argument("mri: volume '" + options.volume_path.string() +
+                                "' is not a readable file (--volume takes a NIfTI .nii or "
+                                ".nii.gz file)");
+  }
+  take_overrides(request.overrides, options);
+  options.progress = request.progress;
+  std::unique_ptr<MriSurface> surface;
+  try {
+    surface = make_mri_surface(options);
+  } catch (const std::runtime_error& e) {
+    // An unreadable or malformed file is bad input like a missing one.
+    throw std::invalid_argument(std::string("mri: ") + e.what());
+  }
+  surface->set_progress({});
+  return surface;
+}
+
+}  // namespace
+
+SceneRegistration mri_scene_registration() {
+  // Nominal ranges: the exact ones (depth_max below the deepest point, threshold up to the
+  // brightest voxel) are known once a volume is loaded and are checked then.
+  std::vector<SurfaceParameter> listed{
+      {"depth_max", MriOptions{}.depth_max, 0.0, 80.0,
+       "depth in mm of the layer at t = 1 below the brain's surface (at most the brain's "
+       "depth - 1 mm)"},
+      {"threshold", 0.0, 0.0, 32767.0,
+       "segmentation intensity threshold, at most the volume's maximum; 0 means Otsu's"}};
+  SceneRegistration r;
+  r.name = MriSurface::kName;
+  r.description = std::string(MriSurface::kDescription) +
+                  "; input --volume FILE.nii[.gz], by default Colin27 (mricron-data)";
+  r.build = build_mri_scene;
+  r.listed_parameters = std::move(listed);
+  r.suggestions = kMriSuggestions;
+  return r;
+}
+
+}  // namespace dynamesh
