@@ -19,13 +19,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Surface> build_scene(const RunOptions& o) {
-  bool registered = false;
-  for (const SceneInfo& s : list_scenes()) registered = registered || s.name == o.scene;
-  if (!registered && (o.scene == "mri" || o.scene == "expr"))
-    throw UsageError("scene '" + o.scene + "' is not available yet in this build");
+// Long loads (the mri volume: reading, segmenting, distance transform) report progress.
+ProgressCallback progress_printer(const RunOptions& o, std::ostream& log) {
+  if (o.quiet) return {};
+  return [&log, last = std::string()](std::string_view stage, double fraction) mutable {
+    const int percent = static_cast<int>(100 * fraction);
+    const std::string line = std::string(stage) + " " + std::to_string(percent) + "%";
+    if (line == last || (percent % 25 != 0 && percent != 99)) return;
+    last = line;
+    log << "loading: " << line << "\n";
+  };
+}
+
+std::unique_ptr<Surface> build_scene(RunOptions& o, std::ostream& log) {
   try {
-    return make_scene(o.scene, o.params, o.scene_text);
+    const SceneInfo* info = nullptr;
+    const std::vector<SceneInfo> scenes = list_scenes();
+    for (const SceneInfo& s : scenes)
+      if (s.name == o.scene) info = &s;
+    std::unique_ptr<Surface> surface =
+        make_scene(o.scene, o.params, o.scene_text, progress_printer(o, log));
+    apply_scene_defaults(o, *info);  // make_scene has rejected an unknown name
+    return surface;
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -117,10 +132,11 @@ void FrameRenderer::render(const MeshSnapshot& snap, std::uint64_t step) {
 
 }  // namespace
 
-int run_command(const RunOptions& o, std::ostream& out, std::ostream& log) {
+int run_command(const RunOptions& options, std::ostream& out, std::ostream& log) {
+  RunOptions o = options;
   if (o.t0 < 0 || o.t0 > 1 || o.t1 < 0 || o.t1 > 1)
     throw UsageError("--t0 and --t1 must lie in [0, 1] (normalised animation time)");
-  std::unique_ptr<Surface> surface = build_scene(o);
+  std::unique_ptr<Surface> surface = build_scene(o, log);
   check_outputs(o);
   std::unique_ptr<StatsCsvWriter> csv;
   if (!o.stats_path.empty()) {

@@ -50,7 +50,11 @@ const std::map<std::string, Setter>& valued_options() {
          o.adapt.epsilon = parse_number(k, v);
          o.epsilon_given = true;
        }},
-      {"--density", [](RunOptions& o, auto& k, auto& v) { o.adapt.density = parse_number(k, v); }},
+      {"--density",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.adapt.density = parse_number(k, v);
+         o.density_given = true;
+       }},
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
        [](RunOptions& o, auto& k, auto& v) {
@@ -150,6 +154,15 @@ void validate(RunOptions& o) {
 
 }  // namespace
 
+void apply_scene_defaults(RunOptions& o, const SceneInfo& scene) {
+  if (!o.threshold_given) o.adapt.threshold = scene.suggested_threshold;
+  if (!o.density_given) o.adapt.density = scene.suggested_density;
+  if (!o.epsilon_given) o.adapt.epsilon = 0.25 * o.adapt.threshold;
+  if (o.adapt.epsilon >= o.adapt.threshold)
+    throw UsageError("--epsilon must be below the threshold (" + std::to_string(o.adapt.threshold) +
+                     " for scene " + scene.name + "): the weld bound T - eps must stay positive");
+}
+
 RunOptions parse_run_options(const std::vector<std::string>& args) {
   RunOptions o;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -202,9 +215,10 @@ Time:
   --t0 T0 --t1 T1        animation interval [0, 1]
   --steps N              N steps from t0 to t1; 0 adapts once at t0  [50]
 Adaptation:
-  --threshold T          target geometric error, scene units  [0.008]
+  --threshold T          target geometric error, scene units  [the scene's: 0.008; mri 0.5 mm]
   --epsilon E            hysteresis: weld below T-E, split above T+E, 0 <= E < T  [T/4]
-  --density D            samples per unit area, at least one per triangle  [2000]
+  --density D            samples per unit area, at least 9 per triangle  [the scene's: 2000;
+                         mri 2 per mm^2]
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
   --max-triangles M      refinement budget (reported when hit)  [2000000]
   --seed S               sample jitter seed  [1]

@@ -23,7 +23,7 @@ struct RunOptions {
   double t0 = 0.0, t1 = 1.0;
   int steps = 50;
   AdaptOptions adapt;
-  bool epsilon_given = false;
+  bool threshold_given = false, epsilon_given = false, density_given = false;
   double edge_length = 0.0;  // 0: the scene's own
   std::string stats_path, export_final_path, export_dir, render_dir;
   int export_every = 1;
@@ -35,6 +35,9 @@ struct RunOptions {
 
 // Parses the words after `run`. Throws UsageError with one line saying what is wrong.
 RunOptions parse_run_options(const std::vector<std::string>& args);
+// Fills what the user left out with the scene's suggestions (threshold in its units, sample
+// density per its unit area; eps = T / 4) and checks the combination.
+void apply_scene_defaults(RunOptions& options, const SceneInfo& scene);
 
 std::string run_help();
 std::string main_help();

@@ -311,7 +311,10 @@ void Adapter::split_pass(bool initial) {
       continue;
     }
     tracker_->touched.clear();
-    mesh_.split(f);
+    if (!mesh_.split(f).is_valid()) {
+      ++stats_.splits_refused;  // at the mesh's depth limit
+      continue;
+    }
     samples_.evaluate_faces(mesh_, probe_, tracker_->touched);
     for (Face t : tracker_->touched) {
       if (!mesh_.is_alive(t)) continue;

@@ -233,6 +233,8 @@ void Mesh48::notify_weld(const DiamondChange& change) {
 // --- split -------------------------------------------------------------------------------
 
 Vertex Mesh48::split(Face f) {
+  // The neighbours a split forces are coarser than f, so checking f bounds them all.
+  if (faces_[f.idx].depth >= kMaxDepth) return Vertex();
   // A 4-8 mesh keeps the face across a refinement edge at most one bisection coarser, so one
   // forced split of the neighbour (recursively conforming itself) pairs the edge.
   const std::uint32_t t = faces_[f.idx].twin[0];

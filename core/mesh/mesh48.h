@@ -142,8 +142,11 @@ class Mesh48 {
   // --- stellar operators -----------------------------------------------------------------
   // Bisects the refinement edge of f (and of its neighbour across it), first splitting the
   // neighbour recursively when the edge is not the neighbour's refinement edge, so that the
-  // mesh stays conforming. Returns the new vertex.
+  // mesh stays conforming. Returns the new vertex, or an invalid handle (and changes
+  // nothing) when f is already kMaxDepth bisections deep: a runaway refinement (e.g. at a
+  // fold of the surface) stops there instead of overflowing.
   Vertex split(Face f);
+  static constexpr int kMaxDepth = 250;
   // True when v is split-born, the newest vertex of every incident face and has 4 of them
   // (2 on the boundary): welding it exactly undoes the split that created it.
   bool can_weld(Vertex v) const;

@@ -341,3 +341,27 @@ TEST(Mesh48, SplitBornVertexLevelsAndParents) {
 
 }  // namespace
 }  // namespace dynamesh
+
+namespace dynamesh {
+namespace {
+
+// Repeatedly splitting the newest corner drives one region to the depth limit; there split
+// refuses (invalid handle, mesh unchanged) instead of overflowing the face depth.
+TEST(Mesh48, SplitStopsAtTheDepthLimit) {
+  Mesh48 mesh = make_grid_mesh(1, 1, Vec2(0, 0), Vec2(1, 1));
+  Face f = mesh.live_faces().front();
+  int refused_at = -1;
+  for (int i = 0; i < 400 && refused_at < 0; ++i) {
+    const Vertex v = mesh.split(f);
+    if (!v.is_valid()) {
+      refused_at = mesh.depth(f);
+      break;
+    }
+    f = mesh.corner(v).face;  // a child of the split, one level deeper
+  }
+  EXPECT_EQ(refused_at, Mesh48::kMaxDepth);
+  EXPECT_TRUE(mesh.check().ok()) << mesh.check().summary();
+}
+
+}  // namespace
+}  // namespace dynamesh
