@@ -31,6 +31,8 @@ std::string to_json(const RunSummary& s) {
       << ",\"max_aspect_ratio\":" << number(s.quality.max_aspect)
       << ",\"mean_aspect_ratio\":" << number(s.quality.mean_aspect)
       << ",\"vertices_kept\":" << l.vertices_kept
+      << ",\"kept_fraction\":" << number(l.kept_fraction)
+      << ",\"survivor_displacement_mean\":" << number(l.survivor_displacement_mean)
       << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false") << "}";
   return out.str();
 }

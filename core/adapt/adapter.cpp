@@ -368,11 +368,18 @@ MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {
     if (mesh_.is_alive(v)) normals[static_cast<std::size_t>(i)] = probe_.normal_at(mesh_, v);
   }
   if (fields.error) {
+    // Mean of the incident faces' errors: interpolated over the faces it shows the error's
+    // distribution (the paper's yellow-green-red pictures) rather than every vertex at its
+    // worst neighbour.
     ScalarField error{"error", std::vector<float>(n, 0.0f)};
+    std::vector<std::uint16_t> faces_seen(n, 0);
     for (Face f : mesh_.live_faces())
-      for (Vertex v : mesh_.vertices(f))
-        error.values[v.idx] =
-            std::max(error.values[v.idx], static_cast<float>(samples_.face_error(f)));
+      for (Vertex v : mesh_.vertices(f)) {
+        error.values[v.idx] += static_cast<float>(samples_.face_error(f));
+        ++faces_seen[v.idx];
+      }
+    for (std::size_t i = 0; i < n; ++i)
+      if (faces_seen[i]) error.values[i] /= faces_seen[i];
     scalars.push_back(std::move(error));
   }
   if (fields.curvature) {

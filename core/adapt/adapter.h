@@ -30,7 +30,7 @@ namespace dynamesh {
 
 // Per-vertex fields a snapshot can carry (each costs time; curvature the most).
 struct SnapshotFields {
-  bool error = true;       // largest sampled error of the incident faces
+  bool error = true;       // mean sampled error of the incident faces
   bool curvature = false;  // largest |principal curvature| of S at the vertex
   bool valence = false;
   bool level = false;

@@ -5,7 +5,9 @@ namespace dynamesh {
 const char* StatsCsvWriter::header() {
   return "step,time,triangles,vertices,splits,welds,total_splits,total_welds,max_error,"
          "mean_error,samples,vertices_kept,projection_failures,budget_hit,seconds_project,"
-         "seconds_smooth,seconds_sample,seconds_weld,seconds_split,seconds_total";
+         "seconds_smooth,seconds_sample,seconds_weld,seconds_split,seconds_total,kept_fraction,"
+         "survivor_displacement_mean,survivor_displacement_max,smoothing_moved,smoothing_reverted,"
+         "splits_refused,pathological_welds";
 }
 
 StatsCsvWriter::StatsCsvWriter(const std::string& path) : file_(path) {
@@ -20,7 +22,9 @@ void StatsCsvWriter::write(const StepStats& s, std::size_t total_splits, std::si
       << s.mean_error << ',' << s.samples << ',' << s.vertices_kept << ',' << s.projection_failures
       << ',' << (s.budget_hit ? 1 : 0) << ',' << s.seconds.project << ',' << s.seconds.smooth << ','
       << s.seconds.sample << ',' << s.seconds.weld << ',' << s.seconds.split << ','
-      << s.seconds.total << '\n';
+      << s.seconds.total << ',' << s.kept_fraction << ',' << s.survivor_displacement_mean << ','
+      << s.survivor_displacement_max << ',' << s.smoothing_moved << ',' << s.smoothing_reverted
+      << ',' << s.splits_refused << ',' << s.pathological_welds << '\n';
 }
 
 void StatsCsvWriter::close() {
