@@ -198,6 +198,13 @@ double Adapter::split_urgency(Face f, bool initial) const {
   return urgency;
 }
 
+double Adapter::weld_ceiling(const DiamondChange& plan) const {
+  double ceiling = std::numeric_limits<double>::infinity();
+  for (const auto& c : criteria_)
+    if (c->applies_to(mesh_, plan)) ceiling = std::min(ceiling, c->weld_error_ceiling());
+  return ceiling;
+}
+
 double Adapter::star_error(const DiamondChange& plan) const {
   double e = 0.0;
   for (int h = 0; h < plan.count; ++h)
@@ -253,7 +260,8 @@ void Adapter::weld_pass() {
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
-    key[static_cast<std::size_t>(i)] = weld_key(plan, samples_.weld_error(mesh_, probe_, plan));
+    key[static_cast<std::size_t>(i)] =
+        weld_key(plan, samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan)));
   }
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
@@ -277,7 +285,7 @@ void Adapter::weld_pass() {
       const Vertex apex = plan.halves[h].parent_vertices[0];
       DiamondChange next;
       if (!mesh_.plan_weld(apex, next)) continue;
-      const double k = weld_key(next, samples_.weld_error(mesh_, probe_, next));
+      const double k = weld_key(next, samples_.weld_error(mesh_, probe_, next, weld_ceiling(next)));
       if (!std::isnan(k)) queue.push(entry(k, apex.idx));
     }
   }

@@ -72,6 +72,8 @@ class Adapter {
   double split_urgency(Face f, bool initial) const;
   bool weld_allowed(const DiamondChange& plan, double error) const;
   double star_error(const DiamondChange& plan) const;
+  // The largest post-weld error any applicable criterion could allow (pruning bound).
+  double weld_ceiling(const DiamondChange& plan) const;
   bool pathological(Face f) const;
   bool split_refused(Face f) const;
   bool pathological_star(const DiamondChange& plan) const;

@@ -150,8 +150,13 @@ void SampleStore::evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe) {
 }
 
 double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
-                               const DiamondChange& plan) const {
-  double worst = 0.0;
+                               const DiamondChange& plan, double ceiling) const {
+  const auto& pv0 = plan.halves[0].parent_vertices;
+  const Vec3 p0[3] = {mesh.position(pv0[0]), mesh.position(pv0[1]), mesh.position(pv0[2])};
+  const Vec2 uv0[3] = {mesh.uv(pv0[0]), mesh.uv(pv0[1]), mesh.uv(pv0[2])};
+  const double midpoint = probe.error_at(p0, uv0, Vec3(0.0, 0.5, 0.5));
+  if (midpoint > ceiling) return midpoint;
+  double worst = midpoint;
   for (int h = 0; h < plan.count; ++h) {
     const Bisection& half = plan.halves[h];
     const auto& pv = half.parent_vertices;

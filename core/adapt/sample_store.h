@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/adapt/surface_probe.h"
@@ -42,7 +43,11 @@ class SampleStore final : public MeshListener {
   void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
   // The L-infinity error the weld planned in `plan` would leave: every sample of the star
   // measured against the two (one) parent triangles, with the quadratic model.
-  double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan) const;
+  // The estimate also covers the restored edge's midpoint (where the removed vertex sat),
+  // measured first: when its error already exceeds `ceiling` the weld cannot be allowed,
+  // and that lower bound is returned without evaluating the samples.
+  double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
+                    double ceiling = std::numeric_limits<double>::infinity()) const;
   // Draws new patterns for faces whose sample count is below half or above twice
   // max(1, D * area); returns how many faces were redrawn. Their errors need evaluating.
   std::size_t refresh_patterns(const Mesh48& mesh);
