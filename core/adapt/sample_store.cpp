@@ -122,9 +122,12 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
 void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
                                  const std::vector<Face>& faces) {
   grow_faces(mesh.face_capacity());
-  std::vector<Face> pending = faces;
-  std::vector<std::uint8_t> unresolved;
-  for (int round = 0; !pending.empty(); ++round) {
+  // Member scratch buffers: this runs after every split, so it must not allocate.
+  std::vector<Face>& pending = pending_;
+  std::vector<Face>& next = next_pending_;
+  std::vector<std::uint8_t>& unresolved = unresolved_;
+  pending.assign(faces.begin(), faces.end());
+  while (!pending.empty()) {
     const auto n = static_cast<std::int64_t>(pending.size());
     unresolved.assign(pending.size(), 0);
 #pragma omp parallel for schedule(dynamic, 256) if (n > kParallelMin)
@@ -134,7 +137,7 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
         unresolved[static_cast<std::size_t>(i)] = !evaluate_face(mesh, probe, f);
     }
     // Densify sequentially (the pool is shared), then measure those faces again.
-    std::vector<Face> next;
+    next.clear();
     for (std::size_t i = 0; i < pending.size(); ++i) {
       const Face f = pending[i];
       if (!unresolved[i] || face_count_[f.idx] >= kMaxSamplesPerFace) continue;

@@ -93,8 +93,10 @@ class SampleStore final : public MeshListener {
   std::vector<std::uint32_t> free_;
   std::vector<std::uint32_t> face_head_, face_count_;
   std::vector<double> face_error_;
-  std::vector<std::uint8_t> face_dense_;  // pattern densified for an unresolved estimate
-  std::vector<std::uint32_t> scratch_;    // sample ids while redistributing
+  std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
+  std::vector<std::uint32_t> scratch_;        // sample ids while redistributing
+  std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
+  std::vector<std::uint8_t> unresolved_;
 };
 
 template <class Fn>
