@@ -190,11 +190,6 @@ bool ViewerApp::take_results() {
       history_.add(r.stats);
       new_step = true;
     }
-    if (r.error.empty() && r.scene != fitted_scene_) {
-      const glm::ivec4 v = view_rect();
-      state_.camera.reset(renderer_.bounds(), float(v.z) / float(std::max(1, v.w)));
-      fitted_scene_ = r.scene;
-    }
     frames_to_draw_ = std::max(frames_to_draw_, 1);
   }
   const ColorMode mode = state_.style.mode;
@@ -210,6 +205,12 @@ bool ViewerApp::take_results() {
       field_asked_for_ = snapshots_taken_;
       request(state_.time, false);
     }
+  }
+  // A new scene is framed once (after its colours: the colour bar narrows the view).
+  if (snapshot_ && running_scene_ != fitted_scene_) {
+    const glm::ivec4 v = view_rect();
+    state_.camera.reset(renderer_.bounds(), float(v.z) / float(std::max(1, v.w)));
+    fitted_scene_ = running_scene_;
   }
   return new_step;
 }

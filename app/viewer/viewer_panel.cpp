@@ -203,12 +203,14 @@ void statistics_section(const ViewerState& state, const PanelInfo& info) {
               grouped(s.welds).c_str(), grouped(s.vertices_kept).c_str(), kept);
   const double bound = state.controls.threshold + state.controls.epsilon;
   const bool over = s.max_error > bound * (1.0 + 1e-9);
-  ImGui::Text("error max");
+  ImGui::Text("max error");
   ImGui::SameLine();
   ImGui::TextColored(over ? kErrorColor : ImGui::GetStyle().Colors[ImGuiCol_Text], "%.3g",
                      s.max_error);
   ImGui::SameLine();
-  ImGui::Text("mean %.3g  (T+eps %.3g)", s.mean_error, bound);
+  ImGui::TextDisabled("(T+eps %.3g)", bound);
+  ImGui::Text("mean error %.3g", s.mean_error);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("over all samples, after the step");
   if (s.budget_hit) ImGui::TextColored(kErrorColor, "triangle budget hit: refinement stopped");
   if (s.projection_failures > 0)
     ImGui::TextColored(kErrorColor, "%zu projections did not converge", s.projection_failures);
