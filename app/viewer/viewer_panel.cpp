@@ -104,7 +104,12 @@ void adaptation_section(ViewerState& s, PanelActions& a) {
   SimulationControls& c = s.controls;
   const SimulationControls before = c;
   ImGui::InputDouble("threshold T", &c.threshold, 0.0005, 0.005, "%.6g", kOnEnter);
+  // The band keeps its width relative to T (the CLI's default is T/4): T/100 with the old
+  // absolute eps would leave no room to weld.
+  if (c.threshold != before.threshold && before.threshold > 0)
+    c.epsilon = before.epsilon * c.threshold / before.threshold;
   ImGui::InputDouble("epsilon", &c.epsilon, 0.0001, 0.001, "%.6g", kOnEnter);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("hysteresis half-width; follows T when T changes");
   ImGui::InputDouble("density", &c.density, 500, 5000, "%.0f", kOnEnter);
   ImGui::InputDouble("stiffness k", &c.k, 0.5, 1.0, "%.3g", kOnEnter);
   ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
