@@ -12,9 +12,7 @@ constexpr int kColormapTexels = 256;
 
 MeshRenderer::MeshRenderer()
     : program_(
-          std::make_unique<ShaderProgram>("mesh.vert.glsl", "mesh.geom.glsl", "mesh.frag.glsl")),
-      surface_program_(
-          std::make_unique<ShaderProgram>("mesh_nowire.vert.glsl", "", "mesh.frag.glsl")) {
+          std::make_unique<ShaderProgram>("mesh.vert.glsl", "mesh.geom.glsl", "mesh.frag.glsl")) {
   gl::GenTextures(1, &colormap_texture_);
   gl::BindTexture(GL_TEXTURE_2D, colormap_texture_);
   // Linear filtering would blend neighbouring categories: nearest, with enough texels that
@@ -83,7 +81,7 @@ void MeshRenderer::draw(const Camera& camera, const RenderStyle& style,
   const ColorScale scale = color_scale(style);
   bind_colormap(scale.map);
 
-  ShaderProgram& p = style.wireframe ? *program_ : *surface_program_;
+  ShaderProgram& p = *program_;
   p.use();
   p.set("u_model_view", model_view);
   p.set("u_projection", camera.projection(aspect, bounds_));

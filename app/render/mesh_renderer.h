@@ -56,8 +56,7 @@ class MeshRenderer {
  private:
   void bind_colormap(ColormapId id);
 
-  std::unique_ptr<ShaderProgram> program_;         // with the wireframe (geometry stage)
-  std::unique_ptr<ShaderProgram> surface_program_;  // without
+  std::unique_ptr<ShaderProgram> program_;
   GpuMesh mesh_;
   SceneBounds bounds_;
   ColorMode scalar_mode_ = ColorMode::kShaded;

@@ -2,8 +2,6 @@
 // combines with them) and its frame-timing summary.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,19 +11,13 @@
 #include "app/viewer/frame_timing.h"
 #include "app/viewer/viewer_args.h"
 #include "app/viewer/viewer_state.h"
+#include "test_render_scratch.h"
 
 namespace dynamesh {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" /
-                       (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // Sets (or unsets, with nullopt) an environment variable for the scope.
 class ScopedEnv {
@@ -70,7 +62,7 @@ TEST(ViewerSettings, LiveInXdgConfigHomeElseDotConfig) {
 }
 
 TEST(ViewerSettings, SaveCreatesTheDirectoryAndLoadRestoresEverything) {
-  const fs::path file = scratch("viewer_settings") / "new" / "dir" / "viewer.conf";
+  const fs::path file = test::render_scratch("viewer_settings") / "new" / "dir" / "viewer.conf";
   ViewerState s;
   s.controls.scene = "mri";
   s.controls.scene_parameters = {{"depth_max", 12.5}, {"threshold", 40}};
@@ -191,7 +183,7 @@ TEST(ViewerFrameTiming, SummaryCountsFramesStepsAndWorstTimes) {
   EXPECT_DOUBLE_EQ(s.work_median_ms, 12.0);
   EXPECT_DOUBLE_EQ(s.work_p95_ms, 14.0);
 
-  const fs::path log = scratch("frame_log") / "frames.csv";
+  const fs::path log = test::render_scratch("frame_log") / "frames.csv";
   write_frame_log(frames, log.string());
   std::ifstream in(log);
   std::string header;

@@ -5,14 +5,14 @@
 
 #include <stb_image.h>
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+
+#include "test_render_scratch.h"
 
 namespace dynamesh {
 namespace {
@@ -91,18 +91,11 @@ std::string viewer(const std::string& options, const std::string& env = "") {
          "' " + options;
 }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" /
-                       (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   ASSERT_TRUE(on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
-  const fs::path dir = scratch("viewer_record");
+  const fs::path dir = test::render_scratch("viewer_record");
   const fs::path video = dir / "run.mp4";
   const Outcome r = run(viewer("--scene sinc --frames 7 --width 640 --height 480 --record '" +
                            video.string() + "'"),
@@ -122,7 +115,7 @@ TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
 
 TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
-  const fs::path dir = scratch("viewer_record_png");
+  const fs::path dir = test::render_scratch("viewer_record_png");
   // A PATH with no ffmpeg on it (the viewer needs nothing else from PATH).
   const Outcome r = run(viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
                                (dir / "run.mp4").string() + "'",
@@ -147,7 +140,7 @@ TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
 
 TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
-  const fs::path dir = scratch("viewer_settings_runs");
+  const fs::path dir = test::render_scratch("viewer_settings_runs");
   const fs::path state = dir / "config" / "viewer.conf";
   const std::string shot = " --screenshot '" + (dir / "shot.png").string() + "'";
   const Outcome first = run(viewer("--state '" + state.string() +
@@ -175,7 +168,7 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
 
 TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
-  const fs::path dir = scratch("viewer_bad_parameter");
+  const fs::path dir = test::render_scratch("viewer_bad_parameter");
   const Outcome r = run(viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
                            (dir / "shot.png").string() + "'"),
                     dir / "log.txt");
@@ -187,7 +180,7 @@ TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
 
 TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
-  const fs::path dir = scratch("viewer_uploads");
+  const fs::path dir = test::render_scratch("viewer_uploads");
   // Turning the view for a second without playing: many frames, one upload.
   const Outcome still = run(viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300"),
                         dir / "still.txt");
