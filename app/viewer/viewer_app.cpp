@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -33,6 +34,13 @@ using Clock = std::chrono::steady_clock;
 constexpr int kMaxFps = 60;
 constexpr auto kMinFrameInterval =
     std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kMaxFps));
+
+// Ctrl-C or a polite kill ends the session like closing the window: settings are saved.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+void on_stop_signal(int) {
+  g_stop_signal = 1;
+}
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -512,7 +520,9 @@ int ViewerApp::run() {
                     target.stem().string());
   }
   int status = 0;
-  while (!window_.should_close()) {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  while (!window_.should_close() && g_stop_signal == 0) {
     wait_for_something_to_draw();
     const bool timed_out = args_.run_for >= 0 && ms_since(started_) >= 1e3 * args_.run_for;
     if (!timed_out && !needs_frame()) continue;  // woken for nothing: the picture stands
