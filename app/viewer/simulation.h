@@ -4,10 +4,13 @@
 // step() runs on the SimulationDriver's worker thread, one call at a time.
 //
 // What a request does, given what was asked for the previous one:
-//   - restart, another scene, other text options (a volume file) or another seed: build the
-//     scene (make_scene) and a new Adapter at the request's time, initialise;
-//   - other scene parameters only: set them on the surface already built (for `mri` this
-//     avoids reading and segmenting the volume again), then a new Adapter, initialise;
+//   - restart or another seed: a new Adapter on the surface already built, initialised at the
+//     request's time;
+//   - another scene or other text options (a volume file): a new surface from the catalogue
+//     (make_scene), then as above;
+//   - scene parameters added or changed: set on the surface already built (for `mri` this
+//     avoids reading and segmenting the volume again), then as above; an override removed
+//     needs the scene's default, so a new surface;
 //   - other adaptation options (T, eps, density, smoothing, budget): Adapter::set_options,
 //     then one step (at the same time if the time did not change): the mesh adapts to the new
 //     options from where it is;
