@@ -33,6 +33,7 @@ class Camera {
   bool normalize_size = false;
 
   static glm::quat default_rotation();
+  bool operator==(const Camera&) const = default;
 
   glm::mat4 model(const SceneBounds& bounds) const;
   glm::mat4 view() const;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace dynamesh {
 
@@ -24,6 +26,9 @@ FieldStats field_stats(const std::vector<float>& values) {
   };
   s.low = at(0.02);
   s.high = at(0.98);
+  double sum = 0.0;
+  for (float x : v) sum += x;
+  s.mean = static_cast<float>(sum / static_cast<double>(v.size()));
   return s;
 }
 
@@ -39,6 +44,14 @@ ColorScale widen(ColorScale s) {
   return s;
 }
 
+// [low, high] grown about its middle to span at least kMinRelativeRange |mean|.
+std::pair<float, float> data_range(float low, float high, const FieldStats& stats) {
+  const float least = kMinRelativeRange * std::abs(stats.mean);
+  if (high - low >= least) return {low, high};
+  const float middle = 0.5f * (low + high);
+  return {middle - 0.5f * least, middle + 0.5f * least};
+}
+
 ColorScale curvature_scale(const FieldStats& stats) {
   ColorScale s;
   s.label = "curvature";
@@ -50,8 +63,7 @@ ColorScale curvature_scale(const FieldStats& stats) {
     s.max = m;
   } else {
     s.map = ColormapId::kViridis;
-    s.min = stats.low;
-    s.max = stats.high;
+    std::tie(s.min, s.max) = data_range(stats.low, stats.high, stats);
   }
   return s;
 }
@@ -92,6 +104,7 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
           settings.intensity_auto ? 0.5 * (stats.high + stats.low) : settings.intensity_level;
       s.min = static_cast<float>(level - 0.5 * window);
       s.max = static_cast<float>(level + 0.5 * window);
+      if (settings.intensity_auto) std::tie(s.min, s.max) = data_range(s.min, s.max, stats);
       break;
     }
   }

@@ -15,6 +15,7 @@ struct FieldStats {
   bool present = false;
   float min = 0.0f, max = 0.0f;
   float low = 0.0f, high = 0.0f;  // 2nd and 98th percentiles
+  float mean = 0.0f;
 };
 
 FieldStats field_stats(const std::vector<float>& values);
@@ -25,6 +26,12 @@ struct ColorScale {
   bool discrete = false;         // integer-valued (valence): one bin per integer
   std::string label;             // e.g. "sampled error"
 };
+
+// A scale taken from a field's values (curvature, automatic intensity window) spans at
+// least this fraction of the field's mean magnitude: a nearly constant field (the curvature
+// of a sphere, equal up to rounding) shows as one colour, not as its rounding noise spread
+// over the whole map.
+inline constexpr float kMinRelativeRange = 0.2f;
 
 // kShaded (or an absent field) gives no scale: the surface is drawn in its flat tint.
 bool has_color_scale(ColorMode mode, const FieldStats& stats);

@@ -64,11 +64,11 @@ GpuMesh::~GpuMesh() {
 void GpuMesh::send(unsigned target, unsigned buffer, std::size_t& capacity, const void* data,
                    std::size_t bytes) {
   gl::BindBuffer(target, buffer);
-  if (bytes > capacity) {
-    // Grow with slack so that a slowly refining mesh does not reallocate every step.
-    capacity = std::max(bytes, capacity + capacity / 2);
-    gl::BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
-  }
+  // Grow with slack so that a slowly refining mesh does not outgrow its buffer every step.
+  if (bytes > capacity) capacity = std::max(bytes, capacity + capacity / 2);
+  // Fresh storage every time (orphaning): the frame still drawing from the old contents
+  // keeps them, and this upload does not wait for it to finish.
+  gl::BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
   if (bytes > 0) gl::BufferSubData(target, 0, static_cast<GLsizeiptr>(bytes), data);
 }
 

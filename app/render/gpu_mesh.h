@@ -35,7 +35,7 @@ class GpuMesh {
   const UploadCounters& counters() const { return counters_; }
 
  private:
-  // Sends `bytes` to `buffer`, reallocating only when it outgrows its capacity.
+  // Sends `bytes` to `buffer`, in fresh storage (orphaning) that grows with slack.
   static void send(unsigned target, unsigned buffer, std::size_t& capacity, const void* data,
                    std::size_t bytes);
 

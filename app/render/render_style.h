@@ -14,6 +14,8 @@ struct ColorSettings {
   bool intensity_auto = true;       // intensity: window/level from the field's 2nd-98th pct.
   double intensity_window = 100.0;  // intensity: width of the grey ramp
   double intensity_level = 50.0;    // intensity: value shown mid-grey
+
+  bool operator==(const ColorSettings&) const = default;
 };
 
 struct RenderStyle {
@@ -25,6 +27,8 @@ struct RenderStyle {
   glm::vec3 surface_color{0.72f, 0.76f, 0.82f};
   glm::vec3 backface_tint{0.75f, 0.35f, 0.30f};
   glm::vec3 background{0.93f, 0.94f, 0.95f};
+
+  bool operator==(const RenderStyle&) const = default;
 };
 
 }  // namespace dynamesh

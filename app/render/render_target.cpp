@@ -49,20 +49,29 @@ void RenderTarget::bind() const {
   gl::Viewport(0, 0, width_, height_);
 }
 
+unsigned RenderTarget::resolved() {
+  if (samples_ == 0) return draw_fbo_;
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_);
+  gl::BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+  gl::BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+  return resolve_fbo_;
+}
+
 Image RenderTarget::read() {
-  unsigned source = draw_fbo_;
-  if (samples_ > 0) {
-    gl::BindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_);
-    gl::BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
-    gl::BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
-                        GL_NEAREST);
-    source = resolve_fbo_;
-  }
-  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, source);
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, resolved());
   gl::ReadBuffer(GL_COLOR_ATTACHMENT0);
   Image image = read_framebuffer(width_, height_);
   gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
   return image;
+}
+
+void RenderTarget::present(const glm::ivec2& origin) {
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, resolved());
+  gl::BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl::BlitFramebuffer(0, 0, width_, height_, origin.x, origin.y, origin.x + width_,
+                      origin.y + height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace dynamesh

@@ -1,6 +1,6 @@
 // An offscreen framebuffer of a given size: multisampled colour and depth to draw into, and
-// a single-sample copy it resolves to for reading pixels. Used for offscreen frames and for
-// viewer screenshots of the 3D view alone.
+// a single-sample copy it resolves to for reading pixels or copying them to a window. Used for
+// offscreen frames and for the viewer's 3D view (drawn again only when it changes).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -23,9 +23,14 @@ class RenderTarget {
   void bind() const;
   // Resolves the samples and reads the picture (top row first); rebinds framebuffer 0.
   Image read();
+  // Resolves the samples and copies the picture into framebuffer 0 (a window) with its
+  // lower-left corner at `origin`; leaves framebuffer 0 bound.
+  void present(const glm::ivec2& origin);
 
  private:
   unsigned make_framebuffer(int samples, unsigned& color, unsigned& depth) const;
+  // The single-sample framebuffer holding the picture (resolving the samples first).
+  unsigned resolved();
 
   int width_, height_, samples_;
   unsigned draw_fbo_ = 0, draw_color_ = 0, draw_depth_ = 0;

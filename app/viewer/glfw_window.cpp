@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "app/render/gl_api.h"
 #include "app/render/gl_loader.h"
 
 namespace dynamesh {
@@ -27,14 +28,15 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 4);
+  // No multisampling here: the 3D view is drawn into its own (multisampled where that is
+  // cheap) target and copied in; the panel does its own antialiasing.
+  glfwWindowHint(GLFW_SAMPLES, 0);
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window_ == nullptr) {
     glfwTerminate();
     throw std::runtime_error("cannot open an OpenGL 3.3 core window");
   }
   glfwMakeContextCurrent(window_);
-  glfwSwapInterval(1);
   const std::string missing = gl::load_functions(
       [](const char* name) { return reinterpret_cast<gl::ProcAddress>(glfwGetProcAddress(name)); });
   if (!missing.empty()) {
@@ -42,6 +44,9 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
     glfwTerminate();
     throw std::runtime_error("OpenGL functions missing: " + missing);
   }
+  renderer_ = reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
+  glfwSwapInterval(1);
+  install_callbacks();  // before ImGui's, which call the ones they replace
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // layout is not state: ViewerState is
@@ -71,6 +76,60 @@ glm::ivec2 GlfwWindow::framebuffer_size() const {
 glm::ivec2 GlfwWindow::window_size() const {
   glm::ivec2 s;
   glfwGetWindowSize(window_, &s.x, &s.y);
+  return s;
+}
+
+bool GlfwWindow::is_software_renderer(const std::string& renderer) {
+  for (const char* name : {"llvmpipe", "softpipe", "swrast", "SWR", "Software"})
+    if (renderer.find(name) != std::string::npos) return true;
+  return false;
+}
+
+void GlfwWindow::install_callbacks() {
+  glfwSetWindowUserPointer(window_, this);
+  static constexpr auto self = [](GLFWwindow* w) {
+    return static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
+  };
+  static constexpr auto count = [](GLFWwindow* w) { ++self(w)->input_events_; };
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { count(w); });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { count(w); });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+    count(w);
+    self(w)->scroll_ += dy;
+  });
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int, int, int, int) { count(w); });
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { count(w); });
+  glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int) { count(w); });
+  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { count(w); });
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { count(w); });
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { count(w); });
+}
+
+glm::ivec2 GlfwWindow::position() const {
+  glm::ivec2 p;
+  glfwGetWindowPos(window_, &p.x, &p.y);
+  return p;
+}
+
+void GlfwWindow::set_position(const glm::ivec2& p) {
+  glfwSetWindowPos(window_, p.x, p.y);
+}
+
+void GlfwWindow::poll_events() {
+  glfwPollEvents();
+}
+
+void GlfwWindow::wait_events(double timeout) {
+  glfwWaitEventsTimeout(timeout);
+}
+
+void GlfwWindow::wake() {
+  glfwPostEmptyEvent();
+}
+
+double GlfwWindow::take_scroll() {
+  const double s = scroll_;
+  scroll_ = 0.0;
   return s;
 }
 

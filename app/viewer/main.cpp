@@ -9,9 +9,24 @@
 
 int main(int argc, char** argv) {
   using namespace dynamesh;
+  const std::vector<std::string> words(argv + 1, argv + argc);
   ViewerArgs args;
   try {
-    args = parse_viewer_args(std::vector<std::string>(argv + 1, argv + argc));
+    // Once over the defaults to learn where the settings live, then over the saved settings:
+    // what the command line says wins over what was saved.
+    args = parse_viewer_args(words);
+    const std::string state_file = state_file_for(args);
+    ViewerState saved;
+    if (!args.fresh && !state_file.empty() && load_viewer_state(saved, state_file)) {
+      try {
+        args = parse_viewer_args(words, saved);
+        args.camera_scene = saved.controls.scene;
+      } catch (const std::exception& e) {  // the command line was fine over the defaults
+        std::fprintf(stderr, "dynamesh: ignoring the saved settings in %s (%s)\n",
+                     state_file.c_str(), e.what());
+      }
+    }
+    args.state_file = state_file;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dynamesh: %s\n", e.what());
     return 2;

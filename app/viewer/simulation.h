@@ -1,69 +1,97 @@
-// The hand-off between the viewer and whatever produces meshes (the adapter; until it is
-// plugged in, a uniformly refined demo). The viewer never touches the mesh: it sends the
-// controls it wants a step run with and shows the snapshots that come back.
+// Simulation: the viewer's side of the engine — one Surface (a scene from the catalogue) and
+// the Adapter that keeps a mesh adapted to it. The viewer never touches the mesh: it sends
+// the controls and the time it wants (a StepRequest) and shows the snapshots that come back.
+// step() runs on the SimulationDriver's worker thread, one call at a time.
 //
-// To plug the adapter in: implement Simulation (one object owning the Surface and the
-// adapter), and return it from make_simulation() in simulation_factory.cpp. step() runs on
-// the driver's worker thread, one call at a time.
+// What a request does, given what was asked for the previous one:
+//   - restart or another seed: a new Adapter on the surface already built, initialised at the
+//     request's time;
+//   - another scene or other text options (a volume file): a new surface from the catalogue
+//     (make_scene), then as above;
+//   - scene parameters added or changed: set on the surface already built (for `mri` this
+//     avoids reading and segmenting the volume again), then as above; an override removed
+//     needs the scene's default, so a new surface;
+//   - other adaptation options (T, eps, density, smoothing, budget): Adapter::set_options,
+//     then one step (at the same time if the time did not change): the mesh adapts to the new
+//     options from where it is;
+//   - another time: one Adapter::step;
+//   - nothing but the snapshot fields (the colour mode changed): a new snapshot, no step.
+// A request that fails (bad parameter, unreadable volume) gives an error and drops the
+// adapter; the viewer keeps showing the last good snapshot. The same controls are not tried
+// again until they change or a restart is asked for.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
-#include "core/adapt/mesh_snapshot.h"
+#include "core/adapt/adapter.h"
+#include "core/adapt/step_stats.h"
+#include "core/surface/scene_registry.h"
 
 namespace dynamesh {
 
-// What a person can steer (DESIGN.md "Viewer"; names and defaults as the CLI's options).
+// What a person can steer (DESIGN.md "Viewer"; names and defaults as dynamesh-cli run's).
 struct SimulationControls {
   std::string scene = "capsule-bend";
-  std::vector<std::pair<std::string, double>> scene_parameters;  // --param KEY=VALUE
-  double threshold = 0.008;                                      // T
-  double epsilon = 0.0008;                                       // hysteresis band half-width
-  double density = 2000.0;                                       // samples per unit area
-  double k = 2.0;                                                // Equation 1 stiffness
+  ParameterOverrides scene_parameters;  // --param KEY=VALUE, the last value of a key wins
+  TextOptions scene_text;               // --volume FILE (mri)
+  double threshold = 0.008;             // T
+  double epsilon = 0.002;               // hysteresis half-width (the CLI's default T/4)
+  double density = 2000.0;              // samples per unit area
+  double k = 2.0;                       // Equation 1 curvature sensitivity
   int smooth_iterations = 1;
-  double edge_length = 0.25;  // sphere scene, right half
-  int max_triangles = 2000000;
+  double edge_length = 0.0;  // > 0: target edge length (sphere: its right half); 0: scene's L
+  int max_triangles = 2'000'000;
   unsigned seed = 1;
 
   bool operator==(const SimulationControls&) const = default;
 };
 
-struct StepRequest {
-  double time = 0.0;  // normalised animation time of the step
-  SimulationControls controls;
-  // Rebuild from the base mesh (scene or scene parameters changed, or the user asked).
-  bool restart = false;
-};
+// The adapter's options for these controls.
+AdaptOptions adapt_options(const SimulationControls& controls);
 
-struct StepStatistics {
-  std::size_t triangles = 0, vertices = 0;
-  double max_error = 0.0, mean_error = 0.0;
-  std::size_t splits = 0, welds = 0;
-  double seconds = 0.0;  // wall time of the step
-  bool budget_hit = false;
+struct StepRequest {
+  double time = 0.0;  // normalised animation time
+  SimulationControls controls;
+  bool restart = false;  // re-initialise from the base mesh at `time`
+  // Per-vertex fields the snapshot carries besides the error (which it always has); surface
+  // point quantities the viewer can colour by ("intensity") are added when the scene has them.
+  SnapshotFields fields;
 };
 
 struct StepResult {
-  std::shared_ptr<const MeshSnapshot> snapshot;  // never null on success
-  StepStatistics stats;
-  std::string error;  // non-empty: the step failed (bad parameter...), snapshot may be null
+  std::shared_ptr<const MeshSnapshot> snapshot;  // null when the request failed
+  StepStats stats;        // the adapter's last step (initialisation: step 0)
+  bool stepped = false;   // the adapter ran for this request: `stats` are new
+  std::string error;      // non-empty: the request failed
+  std::string scene;      // the scene the adapter runs on
+  std::vector<SurfaceParameter> parameters;  // its parameters, current values and ranges
 };
 
 class Simulation {
  public:
-  virtual ~Simulation() = default;
-  // One time step (or, with restart, initialisation at request.time) with the given
-  // controls. Must not throw: failures go in StepResult::error.
-  virtual StepResult step(const StepRequest& request) = 0;
-  // One line for the panel, e.g. "adapter" or "demo: uniform refinement".
-  virtual std::string description() const = 0;
-};
+  Simulation();
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
-// The simulation the viewer runs (see simulation_factory.cpp).
-std::unique_ptr<Simulation> make_simulation();
+  // Never throws: failures come back in StepResult::error.
+  StepResult step(const StepRequest& request);
+
+ private:
+  // The surface for `controls`: the current one with new parameter values when only those
+  // changed, otherwise a new one from the catalogue. Throws what make_scene throws.
+  std::unique_ptr<Surface> surface_for(const SimulationControls& controls);
+  void rebuild(const StepRequest& request);
+  SnapshotFields snapshot_fields(const SnapshotFields& requested) const;
+
+  std::unique_ptr<Surface> surface_;
+  std::unique_ptr<Adapter> adapter_;  // refers to *surface_
+  SimulationControls built_;          // the controls surface_ and adapter_ run with
+  std::optional<SimulationControls> failed_;  // the controls of the last failure
+  std::string failure_;
+};
 
 }  // namespace dynamesh

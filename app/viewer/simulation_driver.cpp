@@ -1,11 +1,15 @@
 #include "app/viewer/simulation_driver.h"
 
-namespace dynamesh {
+#include <sys/resource.h>
+#include <unistd.h>
 
-SimulationDriver::SimulationDriver(std::unique_ptr<Simulation> simulation)
-    : simulation_(std::move(simulation)),
-      description_(simulation_->description()),
-      worker_([this] { run(); }) {}
+namespace dynamesh {
+namespace {
+constexpr int kWorkerNiceness = 10;
+}
+
+SimulationDriver::SimulationDriver(std::function<void()> on_result)
+    : on_result_(std::move(on_result)), worker_([this] { run(); }) {}
 
 SimulationDriver::~SimulationDriver() {
   {
@@ -49,6 +53,9 @@ std::uint64_t SimulationDriver::results_published() const {
 }
 
 void SimulationDriver::run() {
+  // Below the UI thread: on a machine with few cores the adapter's threads (OpenMP's team
+  // inherits this thread's niceness) must not take the cores that draw the window.
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), kWorkerNiceness);
   std::unique_lock lock(mutex_);
   for (;;) {
     wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
@@ -57,15 +64,18 @@ void SimulationDriver::run() {
     pending_.reset();
     running_step_ = true;
     lock.unlock();
-    StepResult result = simulation_->step(request);  // the long part, unlocked
+    StepResult result = simulation_.step(request);  // the long part, unlocked
     lock.lock();
-    running_step_ = false;
-    if (result.snapshot || !result.error.empty()) {
-      // A failed step keeps showing the last good mesh, with the error beside it.
-      if (!result.snapshot) result.snapshot = latest_.snapshot;
-      latest_ = std::move(result);
-      ++published_;
+    // A failed request keeps showing the last good mesh, with the error beside it.
+    if (!result.snapshot) result.snapshot = latest_.snapshot;
+    latest_ = std::move(result);
+    ++published_;
+    if (on_result_) {
+      lock.unlock();
+      on_result_();
+      lock.lock();
     }
+    running_step_ = false;  // only now: wait_idle() returns after the callback too
     if (!pending_) idle_.notify_all();
   }
 }

@@ -1,12 +1,13 @@
-// SimulationDriver: runs a Simulation on a worker thread so the window stays responsive while
-// a step computes. The UI thread calls request_step() (never blocks; a request made while a
-// step runs replaces any older pending one: the newest wish wins) and polls
+// SimulationDriver: runs the Simulation on a worker thread so the window stays responsive
+// while a step computes. The UI thread calls request_step() (never blocks; a request made
+// while a step runs replaces any older pending one: the newest wish wins) and polls
 // latest_result() each frame; finished snapshots are handed over as shared_ptr to const, so
 // the renderer reads them while the worker builds the next.
 #pragma once
 
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,7 +19,9 @@ namespace dynamesh {
 
 class SimulationDriver {
  public:
-  explicit SimulationDriver(std::unique_ptr<Simulation> simulation);
+  // `on_result` (optional) is called on the worker thread after each result is published,
+  // e.g. to wake a UI thread that sleeps waiting for events.
+  explicit SimulationDriver(std::function<void()> on_result = {});
   ~SimulationDriver();  // finishes the running step, drops pending ones, joins
   SimulationDriver(const SimulationDriver&) = delete;
   SimulationDriver& operator=(const SimulationDriver&) = delete;
@@ -28,17 +31,17 @@ class SimulationDriver {
   bool busy() const;
   // Blocks until no step runs or waits (scripted runs use this to be deterministic).
   void wait_idle();
-  // The most recent finished step and a counter that grows with each one (so the caller can
-  // tell a new result from the one it already has).
+  // The most recent finished request and a counter that grows with each one (so the caller
+  // can tell a new result from the one it already has). A failed request's result carries
+  // the error with the last good snapshot.
   StepResult latest_result() const;
   std::uint64_t results_published() const;
-  std::string description() const { return description_; }
 
  private:
   void run();
 
-  std::unique_ptr<Simulation> simulation_;
-  std::string description_;
+  Simulation simulation_;
+  std::function<void()> on_result_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::optional<StepRequest> pending_;

@@ -1,5 +1,6 @@
 #include "app/viewer/video_recorder.h"
 
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -8,6 +9,16 @@
 
 namespace dynamesh {
 namespace fs = std::filesystem;
+namespace {
+
+// One word for /bin/sh, whatever the text holds.
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
 
 bool VideoRecorder::ffmpeg_available() {
   const char* path = std::getenv("PATH");
@@ -36,9 +47,12 @@ std::string VideoRecorder::start(const std::string& dir, const std::string& stem
     const std::string command =
         "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgba -s " + std::to_string(width) + "x" +
         std::to_string(height) + " -r " + std::to_string(fps) +
-        " -i - -vf crop=trunc(iw/2)*2:trunc(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 '" +
-        temp_path_ + "'";
+        " -i - -vf 'crop=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -f mp4 " +
+        shell_quote(temp_path_);
+    // An ffmpeg that exits early must not take the viewer with it: writes then fail instead.
+    std::signal(SIGPIPE, SIG_IGN);
     pipe_ = ::popen(command.c_str(), "w");
+    failed_ = false;
     if (pipe_ != nullptr) return "recording to " + final_path_;
   }
   frames_dir_ = (fs::path(dir) / (stem + "_frames")).string();
@@ -49,7 +63,8 @@ std::string VideoRecorder::start(const std::string& dir, const std::string& stem
 void VideoRecorder::add_frame(const Image& frame) {
   if (!recording() || frame.width != width_ || frame.height != height_) return;
   if (pipe_ != nullptr) {
-    std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), pipe_);
+    failed_ = failed_ ||
+              std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), pipe_) != frame.rgba.size();
   } else {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", frames_);
@@ -64,7 +79,7 @@ std::string VideoRecorder::stop() {
     const int status = ::pclose(pipe_);
     pipe_ = nullptr;
     std::error_code error;
-    if (status == 0 && frames_ > 0) {
+    if (status == 0 && !failed_ && frames_ > 0) {
       fs::rename(temp_path_, final_path_, error);
       if (!error) result = final_path_;
     }

@@ -35,6 +35,7 @@ class VideoRecorder {
   std::FILE* pipe_ = nullptr;
   std::string final_path_, temp_path_, frames_dir_;
   int width_ = 0, height_ = 0, frames_ = 0;
+  bool failed_ = false;  // ffmpeg stopped taking frames
 };
 
 }  // namespace dynamesh

@@ -4,14 +4,21 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <iostream>
+#include <optional>
+#include <thread>
 
+#include "app/render/gl_api.h"
 #include "app/render/mesh_renderer.h"
 #include "app/render/png_file.h"
+#include "app/render/render_target.h"
+#include "app/viewer/frame_timing.h"
 #include "app/viewer/glfw_window.h"
 #include "app/viewer/simulation_driver.h"
 #include "app/viewer/stats_history.h"
@@ -21,12 +28,51 @@
 namespace dynamesh {
 namespace {
 
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kMaxFps = 60;
+constexpr auto kMinFrameInterval =
+    std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kMaxFps));
+
+// Ctrl-C or a polite kill ends the session like closing the window: settings are saved.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+void on_stop_signal(int) {
+  g_stop_signal = 1;
+}
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
 std::string timestamp() {
   char text[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(text, sizeof text, "%Y%m%d-%H%M%S", std::localtime(&now));
   return text;
 }
+
+// The snapshot fields a colour mode needs besides the error (which is always there).
+SnapshotFields fields_for(ColorMode mode) {
+  SnapshotFields f;
+  f.curvature = mode == ColorMode::kCurvature;
+  f.valence = mode == ColorMode::kValence;
+  f.level = mode == ColorMode::kLevel;
+  return f;
+}
+
+// Everything the picture of the 3D view depends on: while it stays the same (the panel is
+// used, the mouse moves), the last picture is copied in instead of drawing the mesh again,
+// which costs a second per frame at a million triangles on a software renderer.
+struct ViewKey {
+  Camera camera;
+  RenderStyle style;
+  glm::ivec4 rect{0};
+  int uploads = 0;  // mesh and colour uploads so far
+
+  bool operator==(const ViewKey&) const = default;
+};
 
 // Mouse drag in progress, in normalised device coordinates of the 3D view.
 struct Drag {
@@ -39,15 +85,14 @@ class ViewerApp {
   explicit ViewerApp(const ViewerArgs& args)
       : args_(args),
         state_(args.state),
-        window_(args.width, args.height, "dynamesh"),
-        driver_(make_simulation()) {
-    if (!args.state_file.empty() && load_viewer_state(state_, args.state_file)) {
-      status_ = "state restored from " + args.state_file;
-    }
-    glfwSetWindowUserPointer(window_.handle(), this);
-    glfwSetScrollCallback(window_.handle(), [](GLFWwindow* w, double, double dy) {
-      static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->on_scroll(dy);
-    });
+        window_(state_.window_width, state_.window_height, "dynamesh"),
+        driver_([] { GlfwWindow::wake(); }),
+        scenes_(list_scenes()),
+        // Multisampling doubles the cost of a frame on a software renderer: there, none.
+        view_samples_(GlfwWindow::is_software_renderer(window_.renderer()) ? 1 : 4),
+        fitted_scene_(args.camera_scene) {
+    if (state_.window_x >= 0 && state_.window_y >= 0)
+      window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);
   }
 
@@ -57,77 +102,143 @@ class ViewerApp {
   // --- simulation ---------------------------------------------------------------------
   void request(double time, bool restart) {
     state_.time = time;
-    driver_.request_step({time, state_.controls, restart});
+    driver_.request_step({time, state_.controls, restart, fields_for(state_.style.mode)});
   }
-  void step_by(int direction) {
-    const double dt = state_.time_step();
-    double t = state_.time + direction * dt;
-    bool restart = false;
-    if (t > state_.t1 + 1e-12) {
-      if (!state_.loop) {
-        state_.playing = false;
-        return;
-      }
-      t = state_.t0;
-      restart = true;
-    }
-    request(std::max(state_.t0, t), restart);
-  }
-  void take_results();
+  void step_by(int direction);
+  // Takes a new result if one was published; true when it shows a new step.
+  bool take_results();
 
   // --- frame ----------------------------------------------------------------------------
+  void wait_for_something_to_draw();
   glm::ivec4 view_rect() const;  // x, y, width, height of the 3D view in framebuffer pixels
   glm::vec2 cursor_ndc() const;
   void handle_mouse();
-  void on_scroll(double dy);
   void handle_keys(PanelActions& a);
   void apply(const PanelActions& a);
-  void render_frame(bool with_ui);
+  void render_frame();
   Image read_window() const;
   void screenshot(const std::string& path);
   void toggle_recording();
+  void start_recording(const std::string& dir, const std::string& stem);
+  bool save_settings();  // false (and why in status_) when it fails
+  int finish_scripted(double seconds);
+  // Whether anything could change the picture: input, a result, playing, a scripted run.
+  bool needs_frame() const;
+  // One frame: results, panel, actions, drawing. True when a scripted run is done (the
+  // frame is then left in the back buffer, unswapped, for the screenshot).
+  bool frame(bool timed_out);
 
   ViewerArgs args_;
   ViewerState state_;
   GlfwWindow window_;
   MeshRenderer renderer_;
   SimulationDriver driver_;
+  const std::vector<SceneInfo> scenes_;
+  const int view_samples_;
+  std::unique_ptr<RenderTarget> view_target_;
+  std::optional<ViewKey> view_drawn_;  // what view_target_ holds
   std::shared_ptr<const MeshSnapshot> snapshot_;
+  std::uint64_t snapshots_taken_ = 0;  // numbers snapshot_ (addresses may be reused)
   std::uint64_t results_seen_ = 0;
-  ColorMode uploaded_mode_ = ColorMode::kShaded;
-  bool camera_fitted_ = false;
+  // What the colour buffer holds: the field of this snapshot for this mode.
+  std::uint64_t colored_snapshot_ = 0;
+  ColorMode colored_mode_ = ColorMode::kShaded;
+  std::uint64_t field_asked_for_ = 0;  // a missing field was asked for once for this one
+  std::string fitted_scene_;  // the scene the camera was framed for
+  std::string running_scene_;
+  std::vector<SurfaceParameter> running_parameters_;
   StatsHistory history_;
-  StepStatistics last_stats_;
-  std::string status_;
+  StepStats last_stats_;
+  std::string error_, status_;
   VideoRecorder recorder_;
   Drag drag_;
   float fps_ = 0.0f;
+  // Redraw only when something happened: input, a new result, or frames ImGui still needs.
+  std::uint64_t input_events_seen_ = 0;
+  int frames_to_draw_ = 2;
+  std::vector<FrameSample> frames_;
+  Clock::time_point started_, first_mesh_, last_frame_start_;
+  int scripted_frames_ = 0;
 };
 
-void ViewerApp::take_results() {
+void ViewerApp::step_by(int direction) {
+  double t = state_.time + direction * state_.time_step();
+  bool restart = false;
+  if (t > state_.t1 + 1e-12) {
+    if (!state_.loop) {
+      state_.playing = false;
+      return;
+    }
+    t = state_.t0;
+    restart = true;
+  }
+  request(std::max(state_.t0, t), restart);
+}
+
+bool ViewerApp::take_results() {
+  bool new_step = false;
   const std::uint64_t published = driver_.results_published();
   if (published != results_seen_) {
     results_seen_ = published;
     const StepResult r = driver_.latest_result();
-    if (!r.error.empty()) status_ = "step failed: " + r.error;
+    error_ = r.error;
+    if (!r.error.empty()) {
+      state_.playing = false;  // the time would run on while the mesh stands still
+    } else {
+      running_scene_ = r.scene;
+      running_parameters_ = r.parameters;
+    }
     if (r.snapshot && r.snapshot != snapshot_) {
       snapshot_ = r.snapshot;
-      renderer_.set_mesh(*snapshot_, state_.style.mode);
-      uploaded_mode_ = state_.style.mode;
-      if (r.error.empty()) {
-        last_stats_ = r.stats;
-        history_.add(snapshot_->time, r.stats);
-      }
+      ++snapshots_taken_;
+      renderer_.set_geometry(*snapshot_);  // once per step, never per frame
+    }
+    if (r.error.empty() && r.stepped) {
+      last_stats_ = r.stats;
+      history_.add(r.stats);
+      new_step = true;
+    }
+    frames_to_draw_ = std::max(frames_to_draw_, 1);
+  }
+  const ColorMode mode = state_.style.mode;
+  if (snapshot_ && (colored_snapshot_ != snapshots_taken_ || colored_mode_ != mode)) {
+    renderer_.set_scalar(*snapshot_, mode);
+    colored_snapshot_ = snapshots_taken_;
+    colored_mode_ = mode;
+    // The mode changed to a field this snapshot was made without: a new snapshot (no step).
+    const SnapshotFields wanted = fields_for(mode);
+    const bool missing = (wanted.curvature || wanted.valence || wanted.level) &&
+                         snapshot_->field(std::string(color_mode_field(mode))) == nullptr;
+    if (missing && field_asked_for_ != snapshots_taken_ && error_.empty()) {
+      field_asked_for_ = snapshots_taken_;
+      request(state_.time, false);
     }
   }
-  if (snapshot_ && uploaded_mode_ != state_.style.mode) {
-    renderer_.set_scalar(*snapshot_, state_.style.mode);  // colour mode changed: field only
-    uploaded_mode_ = state_.style.mode;
-  }
-  if (snapshot_ && !camera_fitted_) {
+  // A new scene is framed once (after its colours: the colour bar narrows the view).
+  if (snapshot_ && running_scene_ != fitted_scene_) {
     const glm::ivec4 v = view_rect();
     state_.camera.reset(renderer_.bounds(), float(v.z) / float(std::max(1, v.w)));
-    camera_fitted_ = true;
+    fitted_scene_ = running_scene_;
+  }
+  return new_step;
+}
+
+void ViewerApp::wait_for_something_to_draw() {
+  if (args_.frames >= 0) {
+    window_.poll_events();  // scripted steps: the loop waits for the driver instead
+  } else if (frames_to_draw_ > 0 || drag_.button >= 0 || args_.orbit) {
+    // At most kMaxFps, as a display's refresh would pace swaps (a virtual display does not):
+    // frames nobody can see would only take the cores from the adapter.
+    std::this_thread::sleep_until(last_frame_start_ + kMinFrameInterval);
+    window_.poll_events();
+  } else {
+    // Woken by input and by the driver when a result is published; the timeout is a
+    // safety net only (and ends a timed run on time).
+    window_.wait_events(args_.run_for >= 0 ? 0.1 : 1.0);
+  }
+  if (window_.input_events() != input_events_seen_) {
+    input_events_seen_ = window_.input_events();
+    frames_to_draw_ = std::max(frames_to_draw_, 3);  // ImGui settles within a few frames
   }
 }
 
@@ -136,7 +247,10 @@ glm::ivec4 ViewerApp::view_rect() const {
   const glm::ivec2 win = window_.window_size();
   const float scale = win.x > 0 ? float(fb.x) / float(win.x) : 1.0f;
   const int panel = state_.show_panel ? static_cast<int>(kPanelWidth * scale) : 0;
-  return {panel, 0, std::max(1, fb.x - panel), std::max(1, fb.y)};
+  const int bar = state_.show_colorbar && renderer_.shows_color_scale(state_.style)
+                      ? static_cast<int>(kColorbarWidth * scale)
+                      : 0;
+  return {panel, 0, std::max(1, fb.x - panel - bar), std::max(1, fb.y)};
 }
 
 glm::vec2 ViewerApp::cursor_ndc() const {
@@ -154,6 +268,9 @@ void ViewerApp::handle_mouse() {
   const glm::vec2 p = cursor_ndc();
   const glm::ivec4 v = view_rect();
   const float aspect = float(v.z) / float(v.w);
+  const double scroll = window_.take_scroll();
+  if (scroll != 0.0 && !ImGui::GetIO().WantCaptureMouse)
+    state_.camera.zoom(std::pow(0.88f, float(scroll)), p, aspect);
   if (drag_.button < 0) {
     if (ImGui::GetIO().WantCaptureMouse) return;
     for (int b : {GLFW_MOUSE_BUTTON_LEFT, GLFW_MOUSE_BUTTON_RIGHT, GLFW_MOUSE_BUTTON_MIDDLE}) {
@@ -172,12 +289,6 @@ void ViewerApp::handle_mouse() {
     state_.camera.pan(p - drag_.last, aspect);
   }
   drag_.last = p;
-}
-
-void ViewerApp::on_scroll(double dy) {
-  if (ImGui::GetIO().WantCaptureMouse) return;
-  const glm::ivec4 v = view_rect();
-  state_.camera.zoom(std::pow(0.88f, float(dy)), cursor_ndc(), float(v.z) / float(v.w));
 }
 
 void ViewerApp::handle_keys(PanelActions& a) {
@@ -201,49 +312,52 @@ void ViewerApp::handle_keys(PanelActions& a) {
 void ViewerApp::apply(const PanelActions& a) {
   const glm::ivec4 v = view_rect();
   const float aspect = float(v.z) / float(v.w);
-  if (a.restart)
+  if (a.reset_settings) {
+    // Everything back to its default but the window, which stays where the person put it.
+    ViewerState defaults;
+    defaults.window_x = state_.window_x;
+    defaults.window_y = state_.window_y;
+    defaults.window_width = state_.window_width;
+    defaults.window_height = state_.window_height;
+    state_ = defaults;
+    fitted_scene_.clear();
+    history_.clear();
     request(state_.t0, true);
-  else if (a.step_forward)
+    status_ = "settings reset to defaults";
+  } else if (a.restart) {
+    history_.clear();
+    request(state_.t0, true);
+  } else if (a.step_forward) {
     step_by(+1);
-  else if (a.step_back)
+  } else if (a.step_back) {
     request(std::max(state_.t0, state_.time - state_.time_step()), false);
-  else if (a.controls_changed)
+  } else if (a.controls_changed) {
     request(state_.time, false);
+  }
   if (a.fit) state_.camera.fit(renderer_.bounds(), aspect);
   if (a.reset_camera) state_.camera.reset(renderer_.bounds(), aspect);
-  if (a.screenshot) {
-    screenshot(
-        (std::filesystem::path(state_.output_dir) / ("dynamesh-" + timestamp() + ".png")).string());
-  }
   if (a.toggle_recording) toggle_recording();
-  const std::string state_path =
-      args_.state_file.empty() ? "dynamesh-viewer.state" : args_.state_file;
-  if (a.save_state) {
-    try {
-      save_viewer_state(state_, state_path);
-      status_ = "state saved to " + state_path;
-    } catch (const std::exception& e) {
-      status_ = e.what();
-    }
-  }
-  if (a.load_state) {
-    status_ = load_viewer_state(state_, state_path) ? "state loaded from " + state_path
-                                                    : "cannot read " + state_path;
-    request(state_.time, true);
-  }
-  if (a.reset_state) {
-    state_ = ViewerState{};
-    camera_fitted_ = false;
-    request(state_.t0, true);
-  }
+  if (a.save_settings) save_settings();
 }
 
-void ViewerApp::render_frame(bool with_ui) {
-  const glm::ivec2 fb = window_.framebuffer_size();
-  renderer_.clear(state_.style, fb);
+void ViewerApp::render_frame() {
   const glm::ivec4 v = view_rect();
-  renderer_.draw(state_.camera, state_.style, {v.z, v.w}, {v.x, v.y});
-  if (with_ui) window_.end_ui_frame();
+  const UploadCounters& up = renderer_.uploads();
+  const ViewKey key{state_.camera, state_.style, v, up.full + up.geometry + up.scalar};
+  if (!view_target_ || view_target_->size() != glm::ivec2(v.z, v.w)) {
+    view_target_ = std::make_unique<RenderTarget>(v.z, v.w, view_samples_);
+    view_drawn_.reset();
+  }
+  if (view_drawn_ != key) {
+    view_target_->bind();
+    renderer_.clear(state_.style, {v.z, v.w});
+    renderer_.draw(state_.camera, state_.style, {v.z, v.w});
+    view_drawn_ = key;
+  }
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  renderer_.clear(state_.style, window_.framebuffer_size());
+  view_target_->present({v.x, v.y});
+  window_.end_ui_frame();
 }
 
 Image ViewerApp::read_window() const {
@@ -260,81 +374,167 @@ void ViewerApp::screenshot(const std::string& path) {
   }
 }
 
+void ViewerApp::start_recording(const std::string& dir, const std::string& stem) {
+  const glm::ivec2 fb = window_.framebuffer_size();
+  status_ = recorder_.start(dir, stem, fb.x, fb.y, state_.record_fps);
+}
+
 void ViewerApp::toggle_recording() {
   try {
     if (recorder_.recording()) {
+      const int frames = recorder_.frames();
       const std::string out = recorder_.stop();
-      status_ = out.empty() ? "recording failed" : "recorded " + out;
+      status_ = out.empty() ? "recording failed"
+                            : "recorded " + std::to_string(frames) + " frames: " + out;
     } else {
-      const glm::ivec2 fb = window_.framebuffer_size();
-      status_ = recorder_.start(state_.output_dir, "dynamesh-" + timestamp(), fb.x, fb.y,
-                                state_.record_fps);
+      start_recording(state_.output_dir, "dynamesh-" + timestamp());
     }
   } catch (const std::exception& e) {
     status_ = e.what();
   }
 }
 
-int ViewerApp::run() {
-  const bool scripted = args_.frames >= 0;
-  int frames_done = 0;
-  auto last = std::chrono::steady_clock::now();
-  const auto started = last;
-  while (!window_.should_close()) {
-    const bool idle = !state_.playing && !driver_.busy() && !recorder_.recording() && !scripted;
-    if (idle) {
-      glfwWaitEventsTimeout(0.25);  // nothing moves: do not spin the CPU
-    } else {
-      glfwPollEvents();
-    }
-    if (scripted) {
-      driver_.wait_idle();  // deterministic: each frame shows the step asked for before it
-    }
-    take_results();
-    window_.begin_ui_frame();
-    PanelInfo info{&history_,
-                   last_stats_,
-                   driver_.description(),
-                   status_,
-                   driver_.busy(),
-                   recorder_.recording(),
-                   fps_,
-                   renderer_.shows_color_scale(state_.style),
-                   renderer_.color_scale(state_.style)};
-    PanelActions actions;
-    if (state_.show_panel) actions = draw_panel(state_, info);
-    if (info.has_scale && state_.show_colorbar) {
-      const ImVec2 size = ImGui::GetIO().DisplaySize;
-      draw_colorbar_window(info.scale, size.x, size.y);
-    }
-    handle_mouse();
-    handle_keys(actions);
-    if (scripted && frames_done < args_.frames) {
-      actions.step_forward = frames_done > 0 || state_.time != state_.t0;
-      ++frames_done;
-    } else if (state_.playing && !driver_.busy()) {
-      actions.step_forward = true;
-    }
-    apply(actions);
-    render_frame(true);
-    if (recorder_.recording()) recorder_.add_frame(read_window());
-    if (scripted && frames_done >= args_.frames && !driver_.busy() &&
-        driver_.results_published() == results_seen_) {
-      write_png(read_window(), args_.screenshot);
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      std::printf("dynamesh: %d frames in %.2f s (%zu triangles), screenshot %s\n", frames_done,
-                  seconds, renderer_.n_triangles(), args_.screenshot.c_str());
-      return 0;
-    }
-    window_.swap();
-    const auto now = std::chrono::steady_clock::now();
-    const float dt = std::chrono::duration<float>(now - last).count();
-    last = now;
-    if (dt > 0.0f) fps_ = fps_ == 0.0f ? 1.0f / dt : 0.9f * fps_ + 0.1f / dt;
+bool ViewerApp::save_settings() {
+  if (args_.state_file.empty()) {
+    status_ = "no settings file in a scripted run (give --state FILE)";
+    return false;
   }
-  recorder_.stop();
+  const glm::ivec2 position = window_.position(), size = window_.window_size();
+  state_.window_x = position.x;
+  state_.window_y = position.y;
+  state_.window_width = size.x;
+  state_.window_height = size.y;
+  try {
+    save_viewer_state(state_, args_.state_file);
+    status_ = "settings saved to " + args_.state_file;
+    return true;
+  } catch (const std::exception& e) {
+    status_ = std::string("cannot save settings: ") + e.what();
+    return false;
+  }
+}
+
+int ViewerApp::finish_scripted(double seconds) {
+  if (!args_.screenshot.empty()) write_png(read_window(), args_.screenshot);
+  std::string recorded;
+  if (recorder_.recording()) {
+    const int frames = recorder_.frames();
+    const std::string path = recorder_.stop();
+    if (path.empty()) {
+      std::fprintf(stderr, "dynamesh: recording to %s failed\n", args_.record.c_str());
+      return 1;
+    }
+    recorded = ", recorded " + std::to_string(frames) + " frames to " + path;
+  }
+  if (!args_.frame_log.empty()) write_frame_log(frames_, args_.frame_log);
+  const UploadCounters& up = renderer_.uploads();
+  std::printf("dynamesh: %zu frames in %.2f s (%zu triangles)%s%s\n", frames_.size(), seconds,
+              renderer_.n_triangles(),
+              args_.screenshot.empty() ? "" : (", screenshot " + args_.screenshot).c_str(),
+              recorded.c_str());
+  std::printf("dynamesh: scene %s, %llu steps; uploads: %d full, %d positions only, %d colour\n",
+              running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
+              up.geometry, up.scalar);
+  std::printf("dynamesh: %s\n", describe(summarize(frames_, seconds)).c_str());
+  if (!error_.empty()) std::printf("dynamesh: error shown: %s\n", error_.c_str());
   return 0;
+}
+
+bool ViewerApp::needs_frame() const {
+  return args_.frames >= 0 || args_.orbit || frames_to_draw_ > 0 || drag_.button >= 0 ||
+         driver_.results_published() != results_seen_ || (state_.playing && !driver_.busy());
+}
+
+bool ViewerApp::frame(bool timed_out) {
+  if (args_.frames >= 0) driver_.wait_idle();  // deterministic: one step per frame
+  const Clock::time_point frame_start = last_frame_start_ = Clock::now();
+  FrameSample sample;
+  sample.at_ms = std::chrono::duration<double, std::milli>(frame_start - started_).count();
+  sample.new_step = take_results();
+  sample.handoff_ms = ms_since(frame_start);
+
+  const Clock::time_point draw_start = Clock::now();
+  window_.begin_ui_frame();
+  PanelInfo info;
+  info.scenes = &scenes_;
+  info.running_scene = running_scene_;
+  info.running_parameters = running_parameters_;
+  info.history = &history_;
+  info.last = last_stats_;
+  info.error = error_;
+  info.status = status_;
+  info.settings = args_.state_file;
+  info.busy = driver_.busy();
+  info.recorded_frames = recorder_.recording() ? recorder_.frames() : -1;
+  info.fps = fps_;
+  info.has_scale = renderer_.shows_color_scale(state_.style);
+  info.scale = renderer_.color_scale(state_.style);
+  PanelActions actions;
+  if (state_.show_panel) actions = draw_panel(state_, info);
+  if (info.has_scale && state_.show_colorbar) {
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    draw_colorbar_window(info.scale, size.x, size.y);
+  }
+  handle_mouse();
+  handle_keys(actions);
+  // Playing: the next step once the last one is on screen (so none is skipped, and a
+  // recording gets one frame per step: a fixed time step per frame).
+  const bool shown_latest = driver_.results_published() == results_seen_;
+  if (args_.frames >= 0) {
+    if (scripted_frames_ > 0 && scripted_frames_ < args_.frames) actions.step_forward = true;
+    ++scripted_frames_;
+  } else if (state_.playing && !driver_.busy() && shown_latest) {
+    actions.step_forward = true;
+  }
+  if (args_.orbit) state_.camera.orbit({0.0f, 0.0f}, {0.004f, 0.0f});  // as if dragged
+  apply(actions);
+  render_frame();
+  // Both read this frame, drawn but not yet swapped.
+  if (actions.screenshot)
+    screenshot((fs::path(state_.output_dir) / ("dynamesh-" + timestamp() + ".png")).string());
+  if (recorder_.recording() && sample.new_step) recorder_.add_frame(read_window());
+  const bool done = args_.frames >= 0 ? scripted_frames_ >= args_.frames && !driver_.busy() &&
+                                            driver_.results_published() == results_seen_
+                                      : timed_out;
+  if (!done) window_.swap();  // the scripted screenshot reads the back buffer
+  sample.draw_ms = ms_since(draw_start);
+  sample.work_ms = ms_since(frame_start);
+  sample.triangles = renderer_.n_triangles();
+  // Timing counts from the first frame with a mesh: before it, the panel alone is drawn.
+  if (args_.scripted() && renderer_.has_mesh()) {
+    if (frames_.empty()) first_mesh_ = frame_start;
+    frames_.push_back(sample);
+  }
+  frames_to_draw_ = std::max(0, frames_to_draw_ - 1);
+  // The rate frames could come at: waiting for events does not count.
+  const float dt = static_cast<float>(sample.work_ms * 1e-3);
+  if (dt > 0.0f) fps_ = fps_ == 0.0f ? 1.0f / dt : 0.9f * fps_ + 0.1f / dt;
+  return done;
+}
+
+int ViewerApp::run() {
+  started_ = Clock::now();
+  if (!args_.record.empty()) {
+    const fs::path target(args_.record);
+    start_recording(target.parent_path().empty() ? "." : target.parent_path().string(),
+                    target.stem().string());
+  }
+  int status = 0;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  while (!window_.should_close() && g_stop_signal == 0) {
+    wait_for_something_to_draw();
+    const bool timed_out = args_.run_for >= 0 && ms_since(started_) >= 1e3 * args_.run_for;
+    if (!timed_out && !needs_frame()) continue;  // woken for nothing: the picture stands
+    if (frame(timed_out)) {
+      status = finish_scripted(frames_.empty() ? 0.0 : ms_since(first_mesh_) * 1e-3);
+      break;
+    }
+  }
+  if (recorder_.recording()) toggle_recording();
+  if (!args_.state_file.empty() && !save_settings())
+    std::fprintf(stderr, "dynamesh: %s\n", status_.c_str());
+  return status;
 }
 
 }  // namespace

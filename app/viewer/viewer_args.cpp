@@ -1,5 +1,6 @@
 #include "app/viewer/viewer_args.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/surface/scene_registry.h"
@@ -30,67 +31,99 @@ int to_int(const std::string& option, const std::string& text) {
 }  // namespace
 
 std::string viewer_usage() {
-  return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--t0 T] [--t1 T] [--steps N]\n"
-         "                [--threshold T] [--epsilon E] [--density D] [--k K] [--smooth-iters I]\n"
-         "                [--edge-length L] [--max-triangles M] [--seed S]\n"
+  return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--volume FILE] [--t0 T] [--t1 T]\n"
+         "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
+         "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
-         "                [--width W] [--height H] [--state FILE]\n"
-         "                [--frames N --screenshot FILE.png]   (scripted: run N steps, save, "
-         "exit)\n"
+         "                [--width W] [--height H] [--state FILE | --fresh]\n"
+         "scripted runs (exit when done):\n"
+         "  --frames N        N frames, one step each (waits for every step)\n"
+         "  --run-for SEC     run SEC seconds as a session would (adapting with --play), print\n"
+         "                    frame timing; --orbit: turn the view every frame meanwhile\n"
+         "  --screenshot FILE.png  --record FILE.mp4  --frame-log FILE.csv\n"
+         "settings (scene, parameters, view, window) are restored at start and saved at exit in\n"
+         "  " +
+         (settings_path().empty() ? std::string("$XDG_CONFIG_HOME/dynamesh/viewer.conf")
+                                  : settings_path()) +
+         "\n  (--state FILE: another file; --fresh: start from the defaults)\n"
          "keys: space play/pause, arrows step, W wireframe, C colour mode, F fit, P screenshot,\n"
-         "      R record, H panel\n";
+         "      R record, H panel.  mouse: left drag orbit, right/shift-left drag pan,\n"
+         "      wheel zoom towards the cursor\n";
 }
 
-ViewerArgs parse_viewer_args(const std::vector<std::string>& args) {
+ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerState& base) {
   ViewerArgs a;
+  a.state = base;
   ViewerState& s = a.state;
+  bool epsilon_given = false, threshold_given = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& opt = args[i];
     const auto value = [&]() -> const std::string& {
       if (i + 1 >= args.size()) throw std::invalid_argument(opt + " needs a value");
       return args[++i];
     };
-    if (opt == "--help" || opt == "-h")
+    if (opt == "--help" || opt == "-h") {
       a.help = true;
-    else if (opt == "--scene")
-      s.controls.scene = value();
-    else if (opt == "--param")
+    } else if (opt == "--scene") {
+      const std::string& name = value();
+      if (name != s.controls.scene) {  // the saved parameters belong to the saved scene
+        s.controls.scene_parameters.clear();
+        s.controls.scene_text.clear();
+      }
+      s.controls.scene = name;
+    } else if (opt == "--param") {
       s.controls.scene_parameters.push_back(parse_parameter_override(value()));
-    else if (opt == "--t0")
+    } else if (opt == "--volume") {
+      const std::string& file = value();
+      std::erase_if(s.controls.scene_text, [](const auto& kv) { return kv.first == "volume"; });
+      s.controls.scene_text.emplace_back("volume", file);
+    } else if (opt == "--t0") {
       s.t0 = s.time = to_number(opt, value());
-    else if (opt == "--t1")
+    } else if (opt == "--t1") {
       s.t1 = to_number(opt, value());
-    else if (opt == "--steps")
+    } else if (opt == "--steps") {
       s.steps = to_int(opt, value());
-    else if (opt == "--threshold")
+    } else if (opt == "--threshold") {
       s.controls.threshold = to_number(opt, value());
-    else if (opt == "--epsilon")
+      threshold_given = true;
+    } else if (opt == "--epsilon") {
       s.controls.epsilon = to_number(opt, value());
-    else if (opt == "--density")
+      epsilon_given = true;
+    } else if (opt == "--density") {
       s.controls.density = to_number(opt, value());
-    else if (opt == "--k")
+    } else if (opt == "--k") {
       s.controls.k = to_number(opt, value());
-    else if (opt == "--smooth-iters")
+    } else if (opt == "--smooth-iters") {
       s.controls.smooth_iterations = to_int(opt, value());
-    else if (opt == "--edge-length")
+    } else if (opt == "--edge-length") {
       s.controls.edge_length = to_number(opt, value());
-    else if (opt == "--max-triangles")
+    } else if (opt == "--max-triangles") {
       s.controls.max_triangles = to_int(opt, value());
-    else if (opt == "--seed")
+    } else if (opt == "--seed") {
       s.controls.seed = static_cast<unsigned>(to_int(opt, value()));
-    else if (opt == "--play")
+    } else if (opt == "--play") {
       s.playing = true;
-    else if (opt == "--frames")
+    } else if (opt == "--frames") {
       a.frames = to_int(opt, value());
-    else if (opt == "--screenshot")
+    } else if (opt == "--run-for") {
+      a.run_for = to_number(opt, value());
+    } else if (opt == "--orbit") {
+      a.orbit = true;
+    } else if (opt == "--screenshot") {
       a.screenshot = value();
-    else if (opt == "--width")
-      a.width = to_int(opt, value());
-    else if (opt == "--height")
-      a.height = to_int(opt, value());
-    else if (opt == "--state")
+    } else if (opt == "--record") {
+      a.record = value();
+    } else if (opt == "--frame-log") {
+      a.frame_log = value();
+    } else if (opt == "--width") {
+      s.window_width = to_int(opt, value());
+    } else if (opt == "--height") {
+      s.window_height = to_int(opt, value());
+    } else if (opt == "--state") {
       a.state_file = value();
-    else if (opt == "--color") {
+    } else if (opt == "--fresh") {
+      a.fresh = true;
+    } else if (opt == "--color") {
       const auto mode = parse_color_mode(value());
       if (!mode)
         throw std::invalid_argument(
@@ -100,16 +133,36 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args) {
       throw std::invalid_argument("unknown option '" + opt + "' (dynamesh --help lists them)");
     }
   }
-  if (s.steps < 0) throw std::invalid_argument("--steps must be >= 0");
-  if (a.width < 64 || a.height < 64 || a.width > 8192 || a.height > 8192) {
+  // As dynamesh-cli run: eps defaults to T/4.
+  if (threshold_given && !epsilon_given) s.controls.epsilon = 0.25 * s.controls.threshold;
+  const SimulationControls& c = s.controls;
+  if (!(c.threshold > 0)) throw std::invalid_argument("--threshold must be positive");
+  if (!(c.epsilon >= 0 && c.epsilon < c.threshold))
+    throw std::invalid_argument("--epsilon must be in [0, threshold)");
+  if (!(c.density > 0)) throw std::invalid_argument("--density must be positive");
+  if (c.max_triangles < 8) throw std::invalid_argument("--max-triangles must be at least 8");
+  if (c.smooth_iterations < 0) throw std::invalid_argument("--smooth-iters must not be negative");
+  if (s.steps < 1) throw std::invalid_argument("--steps must be at least 1");
+  if (!(s.t0 >= 0 && s.t1 <= 1 && s.t0 <= s.t1))
+    throw std::invalid_argument("--t0 and --t1 must satisfy 0 <= t0 <= t1 <= 1");
+  if (s.window_width < 64 || s.window_height < 64 || s.window_width > 8192 ||
+      s.window_height > 8192) {
     throw std::invalid_argument("--width and --height must be between 64 and 8192");
   }
-  if (!a.screenshot.empty() && a.frames < 0) a.frames = 0;
-  if (a.frames >= 0 && a.screenshot.empty()) {
-    throw std::invalid_argument("--frames needs --screenshot FILE.png");
-  }
+  if (a.frames >= 0 && a.run_for >= 0)
+    throw std::invalid_argument("--frames and --run-for exclude each other");
+  if (!a.scripted() && (!a.screenshot.empty() || !a.record.empty() || !a.frame_log.empty()))
+    throw std::invalid_argument("--screenshot, --record and --frame-log need --frames or --run-for");
+  if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
+  if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
+  s.time = std::clamp(s.time, s.t0, s.t1);
   s.style.colors.threshold = s.controls.threshold;
   return a;
+}
+
+std::string state_file_for(const ViewerArgs& args) {
+  if (!args.state_file.empty()) return args.state_file;
+  return args.scripted() ? std::string() : settings_path();
 }
 
 }  // namespace dynamesh

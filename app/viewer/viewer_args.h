@@ -1,8 +1,8 @@
 // The viewer's command line: `dynamesh [--scene NAME] [the CLI's simulation options]
-// [--frames N --screenshot FILE.png] [--width W --height H] [--state FILE] [--play]`.
+// [--width W --height H] [--state FILE | --fresh] [--play]`, plus scripted runs for tests and
+// measurements (`--frames N`, `--run-for SECONDS`, `--screenshot`, `--record`).
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,16 +11,37 @@
 namespace dynamesh {
 
 struct ViewerArgs {
-  ViewerState state;       // defaults with the command line's options applied
-  int frames = -1;         // scripted run: play this many steps, then exit
-  std::string screenshot;  // scripted run: write the window (panel included) here at the end
-  int width = 1280, height = 800;
-  std::string state_file;  // restore from / save to (empty: none)
+  ViewerState state;  // `base` with the command line's options applied
+  // Scripted, deterministic: N frames, one step each (the first shows the initialisation),
+  // waiting for each step; then exit.
+  int frames = -1;
+  // Scripted, free-running for this long, then print frame timing: frames are drawn as in
+  // an interactive session (when something changes), the adapter runs on its worker thread
+  // (with --play) and is never waited for.
+  double run_for = -1.0;
+  // With run_for: turn the camera a little every frame, as a person dragging the view would,
+  // so frames are drawn continuously (at most 60 per second).
+  bool orbit = false;
+  std::string screenshot;  // scripted: write the window (panel included) here at the end
+  std::string record;      // scripted: record the run to this .mp4 (PNG frames without ffmpeg)
+  std::string frame_log;   // scripted: one CSV row per frame (times in ms)
+  // Where settings are read at start and written at exit. Interactive runs default to
+  // settings_path(); scripted runs use none unless --state is given.
+  std::string state_file;
+  bool fresh = false;  // start from the defaults, not the saved settings
+  // The scene the state's camera was framed for (settings restored): the view is kept for
+  // it. Empty: frame the first mesh.
+  std::string camera_scene;
   bool help = false;
+
+  bool scripted() const { return frames >= 0 || run_for >= 0.0; }
 };
 
-// Parses argv. Throws std::invalid_argument with one line saying what is wrong.
-ViewerArgs parse_viewer_args(const std::vector<std::string>& args);
+// Parses argv over `base` (the saved settings): options given on the command line win.
+// Throws std::invalid_argument with one line saying what is wrong.
+ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerState& base = {});
+// The settings file to use (empty: none) for these arguments.
+std::string state_file_for(const ViewerArgs& args);
 std::string viewer_usage();
 
 }  // namespace dynamesh

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdio>
 
 #include "app/render/colorbar_overlay.h"
@@ -16,56 +17,116 @@ ImU32 to_imgui(const glm::vec3& c) {
                   static_cast<int>(c.b * 255), 255);
 }
 
-void scene_section(ViewerState& s, PanelActions& a) {
+const ImVec4 kErrorColor(1.0f, 0.42f, 0.35f, 1.0f);
+
+// Committed on Enter only: a half-typed number (0.0 on the way to 0.0005) must not reach the
+// adapter.
+constexpr ImGuiInputTextFlags kOnEnter = ImGuiInputTextFlags_EnterReturnsTrue;
+
+// Text option of the scene (a volume file): edited in a buffer, committed on Enter.
+bool text_option(SimulationControls& c, const std::string& key) {
+  auto it = std::find_if(c.scene_text.begin(), c.scene_text.end(),
+                         [&](const auto& kv) { return kv.first == key; });
+  char buffer[1024] = {};
+  if (it != c.scene_text.end()) std::snprintf(buffer, sizeof buffer, "%s", it->second.c_str());
+  if (!ImGui::InputText(key.c_str(), buffer, sizeof buffer, kOnEnter)) return false;
+  if (buffer[0] == '\0') {
+    if (it != c.scene_text.end()) c.scene_text.erase(it);
+  } else if (it == c.scene_text.end()) {
+    c.scene_text.emplace_back(key, buffer);
+  } else {
+    it->second = buffer;
+  }
+  return true;
+}
+
+void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const std::vector<SceneInfo> scenes = list_scenes();
-  if (ImGui::BeginCombo("scene", s.controls.scene.c_str())) {
-    for (const SceneInfo& info : scenes) {
-      if (ImGui::Selectable(info.name.c_str(), info.name == s.controls.scene)) {
-        s.controls.scene = info.name;
-        s.controls.scene_parameters.clear();
-        a.restart = true;
+  SimulationControls& c = s.controls;
+  const std::vector<SceneInfo>& scenes = *info.scenes;
+  if (ImGui::BeginCombo("scene", c.scene.c_str())) {
+    for (const SceneInfo& scene : scenes) {
+      if (ImGui::Selectable(scene.name.c_str(), scene.name == c.scene)) {
+        if (scene.name != c.scene) {
+          c.scene = scene.name;
+          c.scene_parameters.clear();
+          c.scene_text.clear();
+          a.restart = true;
+        }
       }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.description.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", scene.description.c_str());
     }
     ImGui::EndCombo();
   }
-  for (const SceneInfo& info : scenes) {
-    if (info.name != s.controls.scene) continue;
-    for (const SurfaceParameter& p : info.parameters) {
-      auto it = std::find_if(s.controls.scene_parameters.begin(), s.controls.scene_parameters.end(),
+  // The running surface knows its parameters best (a scene built from a file may only know
+  // them then); before it runs, the catalogue's defaults.
+  const std::vector<SurfaceParameter>* parameters = nullptr;
+  if (info.running_scene == c.scene) parameters = &info.running_parameters;
+  for (const SceneInfo& scene : scenes)
+    if (parameters == nullptr && scene.name == c.scene) parameters = &scene.parameters;
+  if (parameters != nullptr) {
+    for (const SurfaceParameter& p : *parameters) {
+      auto it = std::find_if(c.scene_parameters.rbegin(), c.scene_parameters.rend(),
                              [&](const auto& kv) { return kv.first == p.name; });
-      float v = static_cast<float>(it != s.controls.scene_parameters.end() ? it->second : p.value);
+      float v = static_cast<float>(it != c.scene_parameters.rend() ? it->second : p.value);
       if (ImGui::SliderFloat(p.name.c_str(), &v, static_cast<float>(p.min),
-                             static_cast<float>(p.max))) {
-        if (it == s.controls.scene_parameters.end()) {
-          s.controls.scene_parameters.emplace_back(p.name, v);
+                             static_cast<float>(p.max), "%.4g")) {
+        if (it == c.scene_parameters.rend()) {
+          c.scene_parameters.emplace_back(p.name, v);
         } else {
           it->second = v;
         }
-        a.restart = true;
       }
+      // Rebuilding on every frame of a drag would only queue work: on release.
+      a.controls_changed |= ImGui::IsItemDeactivatedAfterEdit();
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
     }
+  }
+  for (std::size_t i = 0; i < c.scene_text.size(); ++i)
+    a.controls_changed |= text_option(c, std::string(c.scene_text[i].first));
+  const bool has_volume = std::any_of(c.scene_text.begin(), c.scene_text.end(),
+                                      [](const auto& kv) { return kv.first == "volume"; });
+  if (c.scene == "mri" && !has_volume) a.controls_changed |= text_option(c, "volume");
+  if (!c.scene_parameters.empty() && ImGui::SmallButton("default parameters")) {
+    c.scene_parameters.clear();
+    a.controls_changed = true;
+  }
+  if (!info.error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", info.error.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("(showing the last good mesh)");
   }
 }
 
 void adaptation_section(ViewerState& s, PanelActions& a) {
   if (!ImGui::CollapsingHeader("Adaptation", ImGuiTreeNodeFlags_DefaultOpen)) return;
   SimulationControls& c = s.controls;
-  bool changed = false;
-  changed |= ImGui::InputDouble("threshold T", &c.threshold, 0.001, 0.01, "%.5f");
-  changed |= ImGui::InputDouble("epsilon", &c.epsilon, 0.0001, 0.001, "%.5f");
-  changed |= ImGui::InputDouble("density", &c.density, 100, 1000, "%.0f");
-  changed |= ImGui::InputDouble("stiffness k", &c.k, 0.5, 1.0, "%.2f");
-  changed |= ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
-  changed |= ImGui::InputInt("max triangles", &c.max_triangles, 10000, 100000);
+  const SimulationControls before = c;
+  ImGui::InputDouble("threshold T", &c.threshold, 0.0005, 0.005, "%.6g", kOnEnter);
+  // The band keeps its width relative to T (the CLI's default is T/4): T/100 with the old
+  // absolute eps would leave no room to weld.
+  if (c.threshold != before.threshold && before.threshold > 0)
+    c.epsilon = before.epsilon * c.threshold / before.threshold;
+  ImGui::InputDouble("epsilon", &c.epsilon, 0.0001, 0.001, "%.6g", kOnEnter);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("hysteresis half-width; follows T when T changes");
+  ImGui::InputDouble("density", &c.density, 500, 5000, "%.0f", kOnEnter);
+  ImGui::InputDouble("stiffness k", &c.k, 0.5, 1.0, "%.3g", kOnEnter);
+  ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
+  ImGui::InputDouble("edge length", &c.edge_length, 0.01, 0.1, "%.4g", kOnEnter);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("target edge length (sphere: its right half); 0: the scene's own");
+  ImGui::InputInt("max triangles", &c.max_triangles, 10000, 100000, kOnEnter);
+  int seed = static_cast<int>(c.seed);
+  if (ImGui::InputInt("seed", &seed, 1, 10, kOnEnter)) c.seed = static_cast<unsigned>(seed);
   c.threshold = std::max(c.threshold, 1e-9);
   c.epsilon = std::clamp(c.epsilon, 0.0, 0.99 * c.threshold);
   c.density = std::max(c.density, 1.0);
+  c.k = std::max(c.k, 0.0);
+  c.edge_length = std::max(c.edge_length, 0.0);
   c.max_triangles = std::max(c.max_triangles, 8);
   s.style.colors.threshold = c.threshold;
-  a.controls_changed |= changed;
+  a.controls_changed |= !(c == before);
 }
 
 void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
@@ -85,13 +146,14 @@ void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     a.controls_changed = true;
   }
   ImGui::SliderInt("steps t0..t1", &s.steps, 1, 1000);
-  ImGui::TextDisabled("%s%s", info.simulation.c_str(), info.busy ? "  (computing)" : "");
+  ImGui::TextDisabled("step %llu, t = %.4f%s", static_cast<unsigned long long>(info.last.step),
+                      info.last.time, info.busy ? "  (computing)" : "");
 }
 
 void coloring_section(ViewerState& s, PanelActions& a) {
   if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderStyle& st = s.style;
-  if (ImGui::BeginCombo("colour", std::string(color_mode_label(st.mode)).c_str())) {
+  if (ImGui::BeginCombo("colour (C)", std::string(color_mode_label(st.mode)).c_str())) {
     for (ColorMode m : kAllColorModes) {
       if (ImGui::Selectable(std::string(color_mode_label(m)).c_str(), m == st.mode)) st.mode = m;
     }
@@ -117,40 +179,88 @@ void coloring_section(ViewerState& s, PanelActions& a) {
   a.reset_camera |= ImGui::Button("Reset view");
 }
 
-void plot(const char* label, const std::vector<float>& values, const char* format) {
+void plot(const char* label, const std::vector<float>& values, const char* format,
+          float min = FLT_MAX) {
   if (values.empty()) return;
   char overlay[64];
-  std::snprintf(overlay, sizeof overlay, format, values.back());
-  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, FLT_MAX,
-                   FLT_MAX, ImVec2(0, 50));
+  std::snprintf(overlay, sizeof overlay, format, static_cast<double>(values.back()));
+  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, min, FLT_MAX,
+                   ImVec2(0, 42));
 }
 
-void statistics_section(const PanelInfo& info) {
+// Thousands separated, for triangle and vertex counts.
+std::string grouped(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+void statistics_section(const ViewerState& state, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const StepStatistics& s = info.last;
-  ImGui::Text("triangles %zu   vertices %zu", s.triangles, s.vertices);
-  ImGui::Text("max error %.3g   mean %.3g", s.max_error, s.mean_error);
-  ImGui::Text("splits %zu  welds %zu  step %.1f ms", s.splits, s.welds, 1e3 * s.seconds);
-  ImGui::Text("%.0f fps", info.fps);
-  if (s.budget_hit) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "triangle budget hit");
-  if (info.history != nullptr) {
-    plot("triangles", info.history->triangles, "%.0f");
-    plot("max error", info.history->max_error, "%.3g");
-    plot("step ms", info.history->step_ms, "%.1f");
+  const StepStats& s = info.last;
+  ImGui::Text("triangles %s   vertices %s", grouped(s.triangles).c_str(),
+              grouped(s.vertices).c_str());
+  const double kept = s.vertices > 0 ? 100.0 * double(s.vertices_kept) / double(s.vertices) : 0.0;
+  ImGui::Text("splits %s   welds %s   kept %s (%.1f%%)", grouped(s.splits).c_str(),
+              grouped(s.welds).c_str(), grouped(s.vertices_kept).c_str(), kept);
+  const double bound = state.controls.threshold + state.controls.epsilon;
+  const bool over = s.max_error > bound * (1.0 + 1e-9);
+  ImGui::Text("max error");
+  ImGui::SameLine();
+  ImGui::TextColored(over ? kErrorColor : ImGui::GetStyle().Colors[ImGuiCol_Text], "%.3g",
+                     s.max_error);
+  ImGui::SameLine();
+  ImGui::TextDisabled("(T+eps %.3g)", bound);
+  ImGui::Text("mean error %.3g", s.mean_error);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("over all samples, after the step");
+  if (s.budget_hit) ImGui::TextColored(kErrorColor, "triangle budget hit: refinement stopped");
+  if (s.projection_failures > 0)
+    ImGui::TextColored(kErrorColor, "%zu projections did not converge", s.projection_failures);
+  // Time per phase, as bars sharing the step's total.
+  const PhaseSeconds& p = s.seconds;
+  ImGui::Text("step %.1f ms   %.0f fps", 1e3 * p.total, static_cast<double>(info.fps));
+  const std::pair<const char*, double> phases[] = {
+      {"project", p.project}, {"smooth", p.smooth}, {"sample", p.sample},
+      {"weld", p.weld},       {"split", p.split}};
+  for (const auto& [name, seconds] : phases) {
+    char overlay[48];
+    std::snprintf(overlay, sizeof overlay, "%s %.1f ms", name, 1e3 * seconds);
+    ImGui::ProgressBar(p.total > 0 ? static_cast<float>(seconds / p.total) : 0.0f,
+                       ImVec2(-FLT_MIN, 0), overlay);
+  }
+  if (info.history != nullptr && info.history->size() > 1) {
+    const StatsHistory::Series& h = info.history->series();
+    ImGui::TextDisabled("last %zu steps", info.history->size());
+    plot("triangles", h.triangles, "%.0f", 0.0f);
+    plot("max error", h.max_error, "%.3g", 0.0f);
+    plot("mean error", h.mean_error, "%.3g", 0.0f);
+    plot("splits", h.splits, "%.0f", 0.0f);
+    plot("welds", h.welds, "%.0f", 0.0f);
+    plot("kept %", h.kept_percent, "%.1f");
+    plot("step ms", h.step_ms, "%.1f", 0.0f);
   }
 }
 
-void output_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
+void output_section(PanelActions& a, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) return;
   a.screenshot |= ImGui::Button("Screenshot (P)");
   ImGui::SameLine();
-  a.toggle_recording |= ImGui::Button(info.recording ? "Stop recording (R)" : "Record (R)");
-  a.save_state |= ImGui::Button("Save state");
+  a.toggle_recording |=
+      ImGui::Button(info.recorded_frames >= 0 ? "Stop recording (R)" : "Record (R)");
+  if (info.recorded_frames >= 0) {
+    ImGui::TextColored(kErrorColor, "recording: %d frames (one per step; play to record)",
+                       info.recorded_frames);
+  }
+  a.save_settings |= ImGui::Button("Save settings");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("%s", info.settings.empty() ? "no settings file (scripted run)"
+                                                  : ("saved at exit too, in " + info.settings).c_str());
+  }
   ImGui::SameLine();
-  a.load_state |= ImGui::Button("Load state");
-  ImGui::SameLine();
-  a.reset_state |= ImGui::Button("Reset all");
-  (void)s;
+  a.reset_settings |= ImGui::Button("Reset to defaults");
   if (!info.status.empty()) ImGui::TextWrapped("%s", info.status.c_str());
 }
 
@@ -163,12 +273,12 @@ PanelActions draw_panel(ViewerState& state, const PanelInfo& info) {
   ImGui::Begin("dynamesh", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::PushItemWidth(150);
-  scene_section(state, actions);
+  scene_section(state, actions, info);
   adaptation_section(state, actions);
   playback_section(state, actions, info);
   coloring_section(state, actions);
-  statistics_section(info);
-  output_section(state, actions, info);
+  statistics_section(state, info);
+  output_section(actions, info);
   ImGui::PopItemWidth();
   ImGui::End();
   return actions;
@@ -179,7 +289,7 @@ void draw_colorbar_window(const ColorScale& scale, float window_width, float win
   const float x0 = window_width - bar_w - 24.0f, y0 = 0.5f * (window_height - bar_h);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   // A light card behind bar and numbers keeps them readable over the surface.
-  const float card_w = std::max(ImGui::CalcTextSize(scale.label.c_str()).x + 20.0f, 110.0f);
+  const float card_w = kColorbarWidth - 4.0f;
   draw->AddRectFilled(ImVec2(window_width - card_w, y0 - 36.0f),
                       ImVec2(window_width - 4.0f, y0 + bar_h + 16.0f), IM_COL32(245, 246, 248, 225),
                       6.0f);

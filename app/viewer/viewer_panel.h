@@ -3,33 +3,44 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/render/color_scale.h"
 #include "app/viewer/stats_history.h"
 #include "app/viewer/viewer_state.h"
+#include "core/surface/scene_registry.h"
 
 namespace dynamesh {
 
 struct PanelActions {
-  bool step_forward = false, step_back = false, restart = false;
-  bool controls_changed = false;  // a simulation control moved: re-run the current step
+  bool step_forward = false, step_back = false;
+  bool restart = false;           // re-initialise at t0
+  bool controls_changed = false;  // a simulation control moved: re-run at the current time
   bool fit = false, reset_camera = false;
   bool screenshot = false, toggle_recording = false;
-  bool save_state = false, load_state = false, reset_state = false;
+  bool save_settings = false, reset_settings = false;
 };
 
 struct PanelInfo {
+  const std::vector<SceneInfo>* scenes = nullptr;  // the catalogue
+  // The parameters of the scene the adapter runs on (values and ranges), and its name.
+  std::string running_scene;
+  std::vector<SurfaceParameter> running_parameters;
   const StatsHistory* history = nullptr;
-  StepStatistics last;
-  std::string simulation;  // description of what produces the meshes
-  std::string status;      // last message (screenshot written, errors...)
-  bool busy = false, recording = false;
+  StepStats last;          // the adapter's last step
+  std::string error;       // the last request failed: shown in red
+  std::string status;      // last message (screenshot written...)
+  std::string settings;    // the settings file (empty: none)
+  bool busy = false;
+  int recorded_frames = -1;  // >= 0 while recording
   float fps = 0.0f;
   bool has_scale = false;
   ColorScale scale;
 };
 
-constexpr float kPanelWidth = 330.0f;
+constexpr float kPanelWidth = 340.0f;
+// The colour bar's card at the right edge: the 3D view is laid out beside it, not under it.
+constexpr float kColorbarWidth = 130.0f;
 
 PanelActions draw_panel(ViewerState& state, const PanelInfo& info);
 // Vertical bar with numbers at the right edge of the window.

@@ -1,5 +1,7 @@
 #include "app/viewer/viewer_state.h"
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -9,6 +11,8 @@
 
 namespace dynamesh {
 namespace {
+
+namespace fs = std::filesystem;
 
 // One text codec per field type.
 std::string encode(double v) {
@@ -106,6 +110,10 @@ void visit_fields(State& s, Visit&& visit) {
   visit("wire_width", s.style.wire_width);
   visit("show_panel", s.show_panel);
   visit("show_colorbar", s.show_colorbar);
+  visit("window_x", s.window_x);
+  visit("window_y", s.window_y);
+  visit("window_width", s.window_width);
+  visit("window_height", s.window_height);
   visit("output_dir", s.output_dir);
   visit("record_fps", s.record_fps);
 }
@@ -121,6 +129,14 @@ void save_viewer_state(const ViewerState& state, const std::string& path) {
   for (const auto& [name, value] : state.controls.scene_parameters) {
     out << "param." << name << " = " << encode(value) << "\n";
   }
+  for (const auto& [name, value] : state.controls.scene_text) {
+    out << "text." << name << " = " << value << "\n";
+  }
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) {
+    std::error_code ignored;  // AtomicFile says what is wrong if the directory is missing
+    fs::create_directories(parent, ignored);
+  }
   AtomicFile file(path);
   file.stream() << out.str();
   file.commit();
@@ -130,7 +146,8 @@ bool load_viewer_state(ViewerState& state, const std::string& path) {
   std::ifstream in(path);
   if (!in) return false;
   std::map<std::string, std::string> entries;
-  std::vector<std::pair<std::string, double>> parameters;
+  ParameterOverrides parameters;
+  TextOptions text;
   for (std::string line; std::getline(in, line);) {
     const auto eq = line.find(" = ");
     if (line.empty() || line[0] == '#' || eq == std::string::npos) continue;
@@ -138,6 +155,8 @@ bool load_viewer_state(ViewerState& state, const std::string& path) {
     double number = 0.0;
     if (key.rfind("param.", 0) == 0 && decode(value, number)) {
       parameters.emplace_back(key.substr(6), number);
+    } else if (key.rfind("text.", 0) == 0) {
+      text.emplace_back(key.substr(5), value);
     } else {
       entries[key] = value;
     }
@@ -149,7 +168,22 @@ bool load_viewer_state(ViewerState& state, const std::string& path) {
     if (decode(it->second, decoded)) value = decoded;
   });
   state.controls.scene_parameters = parameters;
+  state.controls.scene_text = text;
   return true;
+}
+
+std::string settings_path() {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  fs::path base;
+  // The XDG base-directory specification ignores relative paths.
+  if (xdg != nullptr && fs::path(xdg).is_absolute()) {
+    base = xdg;
+  } else if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+    base = fs::path(home) / ".config";
+  } else {
+    return {};
+  }
+  return (base / "dynamesh" / "viewer.conf").string();
 }
 
 }  // namespace dynamesh

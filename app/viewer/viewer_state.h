@@ -1,7 +1,8 @@
 // ViewerState: everything a person can set in the viewer, in one struct — the simulation
-// controls, the playback, the camera and the drawing style. Saved to and restored from a
-// small key = value file, reset by assigning ViewerState{}. No parameter lives anywhere else
-// (no static locals), so what is on screen can always be saved and reproduced.
+// controls, the playback, the camera, the drawing style and the window layout. Saved to and
+// restored from a small key = value file (the viewer does so at exit and start, in
+// settings_path()), reset by assigning ViewerState{}. No parameter lives anywhere else (no
+// static locals), so what is on screen can always be saved and reproduced.
 #pragma once
 
 #include <string>
@@ -32,6 +33,9 @@ struct ViewerState {
   RenderStyle style = default_style();
   bool show_panel = true;
   bool show_colorbar = true;
+  // Window layout (screen coordinates; x, y < 0: let the window manager place it).
+  int window_x = -1, window_y = -1;
+  int window_width = 1280, window_height = 800;
   // Output.
   std::string output_dir = ".";  // screenshots and recordings
   int record_fps = 30;
@@ -39,7 +43,11 @@ struct ViewerState {
   double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
 };
 
-// Writes the state as "key = value" lines (atomically). Throws std::runtime_error on failure.
+// Where the viewer keeps its settings between runs: $XDG_CONFIG_HOME/dynamesh/viewer.conf,
+// else ~/.config/dynamesh/viewer.conf; empty when neither variable is set.
+std::string settings_path();
+
+// Writes the state (creating its directory) as "key = value" lines (atomically). Throws std::runtime_error on failure.
 void save_viewer_state(const ViewerState& state, const std::string& path);
 // Reads a file written by save_viewer_state over `state`: unknown keys are ignored (older or
 // newer versions), malformed values are skipped. Returns false when the file cannot be read.

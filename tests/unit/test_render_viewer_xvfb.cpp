@@ -5,9 +5,14 @@
 
 #include <stb_image.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+
+#include "test_render_scratch.h"
 
 namespace dynamesh {
 namespace {
@@ -64,6 +69,148 @@ TEST(ViewerUnderXvfb, ScriptedRunWritesScreenshotWithPanelAndMesh) {
       60)
       << "the centre of the view shows background, not the mesh";
   stbi_image_free(pixels);
+}
+
+// The whole output of a command (stdout and stderr), and its exit status.
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+Outcome run(const std::string& command, const fs::path& log) {
+  Outcome r;
+  r.status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  std::ifstream in(log);
+  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return r;
+}
+
+// The viewer under a fresh virtual display, with `options`.
+std::string viewer(const std::string& options, const std::string& env = "") {
+  return "xvfb-run -a -s '-screen 0 1280x800x24' " + env + " '" + std::string(DYNAMESH_VIEWER) +
+         "' " + options;
+}
+
+
+TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
+  const fs::path dir = test::render_scratch("viewer_record");
+  const fs::path video = dir / "run.mp4";
+  const Outcome r = run(viewer("--scene sinc --frames 7 --width 640 --height 480 --record '" +
+                           video.string() + "'"),
+                    dir / "log.txt");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("recorded 7 frames"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(video)) << r.output;
+  EXPECT_FALSE(fs::exists(video.string() + ".partial"));
+  // An independent reader: ffprobe decodes the file and counts.
+  const Outcome probe = run("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                        "stream=width,height,nb_read_frames -of csv=p=0 '" +
+                            video.string() + "'",
+                        dir / "probe.txt");
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_EQ(probe.output.substr(0, probe.output.find_last_not_of("\n") + 1), "640,480,7");
+}
+
+TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_record_png");
+  // A PATH with no ffmpeg on it (the viewer needs nothing else from PATH).
+  const Outcome r = run(viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
+                               (dir / "run.mp4").string() + "'",
+                           "env PATH=/nonexistent"),
+                    dir / "log.txt");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "run.mp4"));
+  const fs::path frames = dir / "run_frames";
+  ASSERT_TRUE(fs::is_directory(frames)) << r.output;
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(frames)) {
+    int w = 0, h = 0, n = 0;
+    ASSERT_EQ(stbi_info(entry.path().c_str(), &w, &h, &n), 1) << entry.path();
+    EXPECT_EQ(w, 320);
+    EXPECT_EQ(h, 240);
+    ++count;
+  }
+  EXPECT_EQ(count, 4);
+  EXPECT_TRUE(fs::exists(frames / "frame_000000.png"));
+  EXPECT_TRUE(fs::exists(frames / "frame_000003.png"));
+}
+
+TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_settings_runs");
+  const fs::path state = dir / "config" / "viewer.conf";
+  const std::string shot = " --screenshot '" + (dir / "shot.png").string() + "'";
+  const Outcome first = run(viewer("--state '" + state.string() +
+                               "' --scene sinc --param beta=10 --threshold 0.03 --frames 1 "
+                               "--width 700 --height 500" +
+                               shot),
+                        dir / "first.txt");
+  ASSERT_EQ(first.status, 0) << first.output;
+  std::ifstream in(state);
+  const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(saved.find("scene = sinc"), std::string::npos) << saved;
+  EXPECT_NE(saved.find("param.beta = 10"), std::string::npos) << saved;
+  EXPECT_NE(saved.find("window_width = 700"), std::string::npos) << saved;
+
+  // The second run names no scene: it continues with the saved one and its window size.
+  const Outcome second = run(viewer("--state '" + state.string() + "' --frames 1" + shot),
+                         dir / "second.txt");
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_NE(second.output.find("scene sinc"), std::string::npos) << second.output;
+  int w = 0, h = 0, n = 0;
+  ASSERT_EQ(stbi_info((dir / "shot.png").c_str(), &w, &h, &n), 1);
+  EXPECT_EQ(w, 700);
+  EXPECT_EQ(h, 500);
+}
+
+TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_bad_parameter");
+  const Outcome r = run(viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
+                           (dir / "shot.png").string() + "'"),
+                    dir / "log.txt");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("error shown: sinc: no parameter 'no_such'"), std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(dir / "shot.png"));
+}
+
+TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_uploads");
+  // Turning the view for a second without playing: many frames, one upload.
+  const Outcome still = run(viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300"),
+                        dir / "still.txt");
+  ASSERT_EQ(still.status, 0) << still.output;
+  EXPECT_NE(still.output.find("uploads: 1 full, 0 positions only, 1 colour"), std::string::npos)
+      << still.output;
+  unsigned frames = 0;
+  const auto at = still.output.find("dynamesh: ", still.output.find("uploads:"));
+  ASSERT_EQ(std::sscanf(still.output.c_str() + at, "dynamesh: %u frames", &frames), 1);
+  EXPECT_GT(frames, 3u) << still.output;
+
+  // Playing: one geometry upload per step shown.
+  const Outcome playing = run(viewer("--scene sinc --play --run-for 2 --width 400 --height 300"),
+                          dir / "playing.txt");
+  ASSERT_EQ(playing.status, 0) << playing.output;
+  int full = 0, positions = 0, colour = 0;
+  unsigned steps = 0;
+  const auto up = playing.output.find("uploads:");
+  ASSERT_NE(up, std::string::npos) << playing.output;
+  ASSERT_EQ(std::sscanf(playing.output.c_str() + up,
+                        "uploads: %d full, %d positions only, %d colour", &full, &positions,
+                        &colour),
+            3);
+  const auto timing = playing.output.find("new steps");
+  ASSERT_NE(timing, std::string::npos);
+  const auto comma = playing.output.rfind(", ", timing);
+  ASSERT_EQ(std::sscanf(playing.output.c_str() + comma + 2, "%u", &steps), 1);
+  EXPECT_GT(steps, 1u) << playing.output;
+  EXPECT_EQ(static_cast<unsigned>(full + positions), steps) << playing.output;
+  EXPECT_EQ(static_cast<unsigned>(colour), steps) << playing.output;
 }
 
 TEST(ViewerUnderXvfb, WithoutDisplayExitsTwoNamingTheBatchCommand) {

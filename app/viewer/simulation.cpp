@@ -1,0 +1,140 @@
+#include "app/viewer/simulation.h"
+
+#include <algorithm>
+#include <exception>
+
+#include "app/render/color_mode.h"
+
+namespace dynamesh {
+namespace {
+
+bool same_surface(const SimulationControls& a, const SimulationControls& b) {
+  return a.scene == b.scene && a.scene_text == b.scene_text &&
+         a.scene_parameters == b.scene_parameters;
+}
+
+// Everything but the scene and the seed: what Adapter::set_options can change.
+bool same_adaptation(const SimulationControls& a, const SimulationControls& b) {
+  return a.threshold == b.threshold && a.epsilon == b.epsilon && a.density == b.density &&
+         a.k == b.k && a.smooth_iterations == b.smooth_iterations &&
+         a.edge_length == b.edge_length && a.max_triangles == b.max_triangles;
+}
+
+CriterionList criteria_for(const SimulationControls& c, const Surface& surface) {
+  double scene_edge_length = 0.0;
+  for (const SurfaceParameter& p : surface.parameters())
+    if (p.name == "L") scene_edge_length = p.value;
+  return default_criteria(c.scene, scene_edge_length, adapt_options(c), c.edge_length);
+}
+
+}  // namespace
+
+AdaptOptions adapt_options(const SimulationControls& c) {
+  AdaptOptions o;
+  o.threshold = c.threshold;
+  o.epsilon = c.epsilon;
+  o.density = c.density;
+  o.seed = c.seed;
+  o.max_triangles = static_cast<std::size_t>(std::max(c.max_triangles, 0));
+  o.smoothing.k = c.k;
+  o.smoothing.iterations = c.smooth_iterations;
+  o.smoothing.enabled = c.smooth_iterations > 0;
+  return o;
+}
+
+Simulation::Simulation() = default;
+Simulation::~Simulation() = default;
+
+std::unique_ptr<Surface> Simulation::surface_for(const SimulationControls& c) {
+  auto has_key = [&c](const auto& kv) {
+    return std::any_of(c.scene_parameters.begin(), c.scene_parameters.end(),
+                       [&kv](const auto& other) { return other.first == kv.first; });
+  };
+  // Parameters added or changed (none dropped, whose default only make_scene knows): set
+  // them on the surface built already.
+  if (surface_ && c.scene == built_.scene && c.scene_text == built_.scene_text &&
+      std::all_of(built_.scene_parameters.begin(), built_.scene_parameters.end(), has_key)) {
+    adapter_.reset();  // it refers to the surface about to change
+    std::unique_ptr<Surface> surface = std::move(surface_);
+    try {
+      for (const auto& [name, value] : c.scene_parameters) {
+        const std::vector<SurfaceParameter> now = surface->parameters();
+        const auto it = std::find_if(now.begin(), now.end(),
+                                     [&](const SurfaceParameter& p) { return p.name == name; });
+        if (it == now.end() || it->value != value) surface->set_parameter(name, value);
+      }
+      return surface;
+    } catch (const std::invalid_argument&) {
+      // One at a time, a value may conflict with one set later: make_scene retries in any
+      // order and says what is wrong when nothing works.
+    }
+  }
+  return make_scene(c.scene, c.scene_parameters, c.scene_text);
+}
+
+void Simulation::rebuild(const StepRequest& request) {
+  const SimulationControls& c = request.controls;
+  std::unique_ptr<Surface> surface = surface_for(c);
+  adapter_.reset();
+  surface_ = std::move(surface);
+  built_ = c;  // also when the adapter fails below: surface_ matches c
+  surface_->set_time(request.time);
+  adapter_ = std::make_unique<Adapter>(*surface_, adapt_options(c), criteria_for(c, *surface_));
+  adapter_->initialize();
+}
+
+SnapshotFields Simulation::snapshot_fields(const SnapshotFields& requested) const {
+  SnapshotFields fields = requested;
+  fields.error = true;
+  fields.quantities.clear();
+  // Point quantities that some colour mode shows (the mri scene's "intensity").
+  for (const std::string& q : surface_->point_quantities()) {
+    const bool shown = std::any_of(kAllColorModes.begin(), kAllColorModes.end(),
+                                   [&q](ColorMode m) { return color_mode_field(m) == q; });
+    if (shown) fields.quantities.push_back(q);
+  }
+  return fields;
+}
+
+StepResult Simulation::step(const StepRequest& request) {
+  StepResult result;
+  const SimulationControls& c = request.controls;
+  if (!request.restart && failed_ && *failed_ == c) {
+    result.error = failure_;  // not again: the same controls failed already
+    return result;
+  }
+  try {
+    const bool new_adapter = request.restart || !adapter_ || !same_surface(c, built_) ||
+                             c.seed != built_.seed;
+    if (new_adapter) {
+      rebuild(request);
+      result.stepped = true;
+    } else {
+      const bool retune = !same_adaptation(c, built_);
+      if (retune) {
+        adapter_->set_options(adapt_options(c), criteria_for(c, *surface_));
+        built_ = c;
+      }
+      if (retune || request.time != surface_->time()) {
+        adapter_->step(request.time);
+        result.stepped = true;
+      }
+    }
+    failed_.reset();
+    result.snapshot =
+        std::make_shared<const MeshSnapshot>(adapter_->snapshot(snapshot_fields(request.fields)));
+    result.stats = adapter_->stats();
+    result.scene = built_.scene;
+    result.parameters = surface_->parameters();
+  } catch (const std::exception& e) {
+    // The adapter may be half-way through a step: start again from the base mesh next time.
+    adapter_.reset();
+    failed_ = c;
+    failure_ = e.what();
+    result = StepResult{};
+    result.error = failure_;
+  }
+  return result;
+}
+
+}  // namespace dynamesh
