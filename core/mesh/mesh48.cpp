@@ -37,9 +37,7 @@ void Mesh48::reserve(std::size_t vertices, std::size_t faces) {
   positions_.reserve(vertices);
   uvs_.reserve(vertices);
   vertex_face_.reserve(vertices);
-  parent_a_.reserve(vertices);
-  parent_b_.reserve(vertices);
-  level_.reserve(vertices);
+  lineage_.reserve(vertices);
 }
 
 std::uint32_t Mesh48::allocate_face() {
@@ -63,9 +61,7 @@ std::uint32_t Mesh48::allocate_vertex() {
   positions_.emplace_back(Vec3::Zero());
   uvs_.emplace_back(Vec2::Zero());
   vertex_face_.push_back(kInvalidIndex);
-  parent_a_.push_back(kInvalidIndex);
-  parent_b_.push_back(kInvalidIndex);
-  level_.push_back(0);
+  lineage_.emplace_back();
   return static_cast<std::uint32_t>(positions_.size() - 1);
 }
 
@@ -89,18 +85,18 @@ void Mesh48::link(std::uint32_t face_a, int local_a, std::uint32_t halfedge_b) {
 Mesh48 Mesh48::from_base_triangles(std::vector<Vec3> positions, std::vector<Vec2> uvs,
                                    const std::vector<std::array<std::uint32_t, 3>>& triangles) {
   const std::size_t nv = positions.size();
+  const bool has_uvs = !uvs.empty();
   if (uvs.empty()) uvs.assign(nv, Vec2::Zero());
   if (uvs.size() != nv)
     throw std::invalid_argument("base mesh: uv count differs from vertex count");
   if (triangles.empty()) throw std::invalid_argument("base mesh: no triangles");
 
   Mesh48 mesh;
+  mesh.has_uvs_ = has_uvs;
   mesh.positions_ = std::move(positions);
   mesh.uvs_ = std::move(uvs);
   mesh.vertex_face_.assign(nv, kInvalidIndex);
-  mesh.parent_a_.assign(nv, kInvalidIndex);
-  mesh.parent_b_.assign(nv, kInvalidIndex);
-  mesh.level_.assign(nv, 0);
+  mesh.lineage_.assign(nv, Lineage{});
   mesh.faces_.resize(triangles.size());
 
   std::unordered_map<std::uint64_t, std::uint32_t> halfedge_of;
@@ -270,10 +266,8 @@ Vertex Mesh48::split_diamond(Face f) {
   const std::uint8_t depth = rec.depth;
   const std::uint32_t m = allocate_vertex();
   positions_[m] = 0.5 * (positions_[a] + positions_[b]);
-  uvs_[m] = 0.5 * (uvs_[a] + uvs_[b]);
-  parent_a_[m] = a;
-  parent_b_[m] = b;
-  level_[m] = static_cast<std::uint8_t>(depth + 1);
+  if (has_uvs_) uvs_[m] = 0.5 * (uvs_[a] + uvs_[b]);
+  lineage_[m] = {a, b, static_cast<std::uint8_t>(depth + 1)};
   vertex_face_[m] = f.idx;
 
   DiamondChange change;
@@ -345,7 +339,7 @@ bool Mesh48::plan_weld(Vertex v, DiamondChange& change) const {
   std::array<Corner, 4> star;
   const int count = collect_weld_star(v, star);
   if (count == 0) return false;
-  const std::uint32_t pa = parent_a_[v.idx], pb = parent_b_[v.idx];
+  const std::uint32_t pa = lineage_[v.idx].parent_a, pb = lineage_[v.idx].parent_b;
   auto ring = [&](int i) { return faces_[star[(i + count) % count].face.idx].v[1]; };
   change.vertex = v;
   change.parents = {Vertex(pa), Vertex(pb)};
@@ -393,7 +387,7 @@ void Mesh48::apply_weld(const DiamondChange& change) {
   if (change.count == 2) link(change.halves[0].parent.idx, 0, 3 * change.halves[1].parent.idx);
   const std::uint32_t v = change.vertex.idx;
   vertex_face_[v] = kInvalidIndex;
-  parent_a_[v] = parent_b_[v] = kInvalidIndex;
+  lineage_[v] = Lineage{};
   free_vertices_.push_back(v);
   --n_live_vertices_;
   notify_weld(change);

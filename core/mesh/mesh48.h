@@ -118,11 +118,11 @@ class Mesh48 {
   const std::vector<Vec3>& positions() const { return positions_; }
   std::vector<Vec2>& uvs() { return uvs_; }
   const std::vector<Vec2>& uvs() const { return uvs_; }
-  bool is_base(Vertex v) const { return parent_a_[v.idx] == kInvalidIndex; }
+  bool is_base(Vertex v) const { return lineage_[v.idx].parent_a == kInvalidIndex; }
   std::array<Vertex, 2> parents(Vertex v) const {
-    return {Vertex(parent_a_[v.idx]), Vertex(parent_b_[v.idx])};
+    return {Vertex(lineage_[v.idx].parent_a), Vertex(lineage_[v.idx].parent_b)};
   }
-  int level(Vertex v) const { return level_[v.idx]; }
+  int level(Vertex v) const { return lineage_[v.idx].level; }
   Corner corner(Vertex v) const;
   bool is_boundary(Vertex v) const;
   int valence(Vertex v) const;  // number of neighbouring vertices
@@ -200,8 +200,13 @@ class Mesh48 {
   // One face holding each vertex (its local index is found by comparison, so a split or weld
   // only rewrites the entries of vertices that left a face); kInvalidIndex when dead.
   std::vector<std::uint32_t> vertex_face_;
-  std::vector<std::uint32_t> parent_a_, parent_b_;
-  std::vector<std::uint8_t> level_;
+  // Parent edge and level of each vertex, together: a split writes them at once.
+  struct Lineage {
+    std::uint32_t parent_a = kInvalidIndex, parent_b = kInvalidIndex;
+    std::uint8_t level = 0;
+  };
+  std::vector<Lineage> lineage_;
+  bool has_uvs_ = false;  // the base mesh came with (u, v): splits interpolate them
   std::vector<std::uint32_t> free_faces_, free_vertices_;
   std::size_t n_live_vertices_ = 0, n_live_faces_ = 0;
   std::vector<MeshListener*> listeners_;

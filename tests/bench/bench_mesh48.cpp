@@ -67,7 +67,38 @@ void BM_Weld(benchmark::State& state) {
   state.counters["triangles_before"] = static_cast<double>(fine.n_faces());
 }
 
+// Steady state, as during adaptation: the mesh has been refined and welded back before, so
+// splits reuse slots from the free lists (no growth, no first touch of fresh memory).
+void BM_SplitSteadyState(benchmark::State& state) {
+  static const Mesh48 recycled = [] {
+    Mesh48 m = coarse_mesh();
+    refine_uniformly(m);
+    std::vector<Vertex> finest;
+    for (Vertex v : m.live_vertices())
+      if (m.can_weld(v)) finest.push_back(v);
+    for (Vertex v : finest) m.weld(v);
+    return m;
+  }();
+  std::int64_t splits = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Mesh48 mesh = recycled;
+    const std::vector<Face> faces = mesh.live_faces();
+    const int depth = mesh.depth(faces.front());
+    // Copies do not keep free lists' memory warm; one split/weld round trip touches it.
+    for (Face f : faces)
+      if (mesh.depth(f) == depth) mesh.weld(mesh.split(f));
+    state.ResumeTiming();
+    for (Face f : faces)
+      if (mesh.depth(f) == depth) mesh.split(f);
+    splits += static_cast<std::int64_t>(faces.size() / 2);
+    benchmark::DoNotOptimize(mesh.n_faces());
+  }
+  state.SetItemsProcessed(splits);
+}
+
 BENCHMARK(BM_Split)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SplitSteadyState)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_Weld)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
