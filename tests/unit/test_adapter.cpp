@@ -10,30 +10,15 @@
 #include "core/mesh/bisection_map.h"
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
+#include "scene_run.h"
 
 namespace dynamesh {
 namespace {
 
-struct SceneRun {
-  std::unique_ptr<Surface> surface;
-  std::unique_ptr<Adapter> adapter;
-};
-
-double scene_edge_length(const Surface& s) {
-  for (const SurfaceParameter& p : s.parameters())
-    if (p.name == "L") return p.value;
-  return 0.0;
-}
+using test::SceneRun;
 
 SceneRun start(const std::string& scene, const AdaptOptions& options, double t0 = 0.0) {
-  SceneRun run;
-  run.surface = make_scene(scene);
-  run.surface->set_time(t0);
-  run.adapter = std::make_unique<Adapter>(
-      *run.surface, options,
-      default_criteria(scene, scene_edge_length(*run.surface), options, 0.0));
-  run.adapter->initialize();
-  return run;
+  return test::start_scene(scene, options, t0);
 }
 
 // Steps from t0 to t1 in `steps` steps, checking the invariants after each.
@@ -183,7 +168,7 @@ TEST(Adapter, BackAndForthSweepReturnsWithinOneLevel) {
 TEST(Adapter, MultiCriteriaSphere) {
   const AdaptOptions o = options_with(0.008);
   SceneRun run = start("sphere", o, 0.0);
-  const double L = scene_edge_length(*run.surface);
+  const double L = test::scene_edge_length(*run.surface);
   auto count_halves = [&](std::size_t& left, std::size_t& right) {
     left = right = 0;
     const Mesh48& mesh = run.adapter->mesh();
