@@ -3,14 +3,12 @@
 // derivatives (fundamental forms for parametric surfaces, Goldman 2005 for implicit ones).
 #include "core/surface/surface.h"
 
-#include <limits>
-
-#include <cmath>
-
 #include <algorithm>
-
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
+#include "core/surface/finite_differences.h"
 #include "core/surface/parameter_table.h"
 #include "core/surface/principal_frame.h"
 
@@ -31,23 +29,10 @@ void Surface::set_parameter(const std::string& name, double value) {
 // ---- ParametricSurface ----------------------------------------------------------------------
 
 ParametricDerivatives ParametricSurface::derivatives(const Vec2& uv) const {
-  // Central differences; steps near the optimum for double precision (eps^(1/3) for first,
-  // eps^(1/4) for second derivatives) relative to the domain's size. The stencil may reach
-  // slightly outside the domain: position() must accept such points.
-  const Vec2 size = domain().max - domain().min;
-  const double hu = 1e-5 * size.x(), hv = 1e-5 * size.y();
-  const double Hu = 1e-4 * size.x(), Hv = 1e-4 * size.y();
-  const Vec2 du(hu, 0.0), dv(0.0, hv), Du(Hu, 0.0), Dv(0.0, Hv);
-  ParametricDerivatives d;
-  d.s = position(uv);
-  d.su = (position(uv + du) - position(uv - du)) / (2.0 * hu);
-  d.sv = (position(uv + dv) - position(uv - dv)) / (2.0 * hv);
-  d.suu = (position(uv + Du) - 2.0 * d.s + position(uv - Du)) / (Hu * Hu);
-  d.svv = (position(uv + Dv) - 2.0 * d.s + position(uv - Dv)) / (Hv * Hv);
-  d.suv = (position(uv + Du + Dv) - position(uv + Du - Dv) - position(uv - Du + Dv) +
-           position(uv - Du - Dv)) /
-          (4.0 * Hu * Hv);
-  return d;
+  // Steps relative to the domain's size; the stencil may reach slightly outside the domain,
+  // so position() must accept such points.
+  return parametric_differences([this](const Vec2& q) { return position(q); }, uv,
+                                domain().max - domain().min);
 }
 
 double Surface::point_quantity(const std::string&, const Vec3&) const {
@@ -106,12 +91,8 @@ PrincipalCurvatures ParametricSurface::curvatures(const Vec2& uv) const {
 // ---- ImplicitSurface ------------------------------------------------------------------------
 
 double ImplicitSurface::value_gradient(const Vec3& p, Vec3& gradient) const {
-  const double h = difference_step();
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 e = h * Vec3::Unit(i);
-    gradient(i) = (value(p + e) - value(p - e)) / (2.0 * h);
-  }
-  return value(p);
+  return gradient_differences([this](const Vec3& q) { return value(q); }, p, difference_step(),
+                              gradient);
 }
 
 Mat3 ImplicitSurface::hessian(const Vec3& p) const {

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "core/mesh/base_meshes.h"
-#include "core/surface/expression/finite_differences.h"
+#include "core/surface/finite_differences.h"
 #include "core/surface/expression/formula_checks.h"
 
 namespace dynamesh {

@@ -7,7 +7,7 @@
 
 #include "core/mesh/base_meshes.h"
 #include "core/surface/box_base_mesh.h"
-#include "core/surface/expression/finite_differences.h"
+#include "core/surface/finite_differences.h"
 #include "core/surface/expression/formula_checks.h"
 #include "core/surface/projection.h"
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/surface/expression/finite_differences.h"
+#include "core/surface/finite_differences.h"
 #include "core/surface/expression/formula_checks.h"
 #include "core/surface/expression/periodic_grid_mesh.h"
 

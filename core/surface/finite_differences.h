@@ -1,4 +1,5 @@
-// Central finite differences for surfaces known only through evaluation (typed formulas).
+// Central finite differences for surfaces known only through evaluation: the defaults of
+// ParametricSurface / ImplicitSurface and the typed-formula surfaces.
 // Steps are relative to the extent of the bounds or parameter domain, near the optimum for
 // double precision: eps^(1/3) ~ 1e-5 for first derivatives (truncation h^2 and rounding
 // eps/h balance), eps^(1/4) ~ 1e-4 for second derivatives (h^2 against eps/h^2). The stencils
