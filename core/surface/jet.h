@@ -31,4 +31,22 @@ inline ScalarJet compose(const ScalarJet& outer, const MapJet& inner) {
   return r;
 }
 
+// F(p) = F0(q(p)) for a rest shape (value_gradient, jet) and a map to rest space (to_rest
+// with its Jacobian, to_rest_jet): what every deformed implicit scene evaluates.
+template <class Shape, class Map>
+double mapped_value_gradient(const Shape& shape, const Map& map, const Vec3& p, Vec3& gradient) {
+  Mat3 jacobian;
+  const Vec3 q = map.to_rest(p, jacobian);
+  Vec3 rest_gradient;
+  const double f = shape.value_gradient(q, rest_gradient);
+  gradient = jacobian.transpose() * rest_gradient;
+  return f;
+}
+
+template <class Shape, class Map>
+Mat3 mapped_hessian(const Shape& shape, const Map& map, const Vec3& p) {
+  const MapJet inner = map.to_rest_jet(p);
+  return compose(shape.jet(inner.value), inner).hessian;
+}
+
 }  // namespace dynamesh

@@ -93,17 +93,11 @@ double CapsuleBendScene::value(const Vec3& p) const {
 }
 
 double CapsuleBendScene::value_gradient(const Vec3& p, Vec3& gradient) const {
-  Mat3 J;
-  const Vec3 q = bend_.to_rest(p, J);
-  Vec3 g0;
-  const double f = capsule_.value_gradient(q, g0);
-  gradient = J.transpose() * g0;
-  return f;
+  return mapped_value_gradient(capsule_, bend_, p, gradient);
 }
 
 Mat3 CapsuleBendScene::hessian(const Vec3& p) const {
-  const MapJet map = bend_.to_rest_jet(p);
-  return compose(capsule_.jet(map.value), map).hessian;
+  return mapped_hessian(capsule_, bend_, p);
 }
 
 Mesh48 CapsuleBendScene::base_mesh() const {

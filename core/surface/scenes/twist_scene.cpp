@@ -63,17 +63,11 @@ double TwistScene::value(const Vec3& p) const {
 }
 
 double TwistScene::value_gradient(const Vec3& p, Vec3& gradient) const {
-  Mat3 J;
-  const Vec3 q = twist_.to_rest(p, J);
-  Vec3 g0;
-  const double f = bar_.value_gradient(q, g0);
-  gradient = J.transpose() * g0;
-  return f;
+  return mapped_value_gradient(bar_, twist_, p, gradient);
 }
 
 Mat3 TwistScene::hessian(const Vec3& p) const {
-  const MapJet map = twist_.to_rest_jet(p);
-  return compose(bar_.jet(map.value), map).hessian;
+  return mapped_hessian(bar_, twist_, p);
 }
 
 Mesh48 TwistScene::base_mesh() const {
