@@ -32,25 +32,33 @@ inline double distance_at(const Surface& surface, const Vec3 p[3], const Vec2 uv
   return distance_to_surface(dynamic_cast<const ImplicitSurface&>(surface), x);
 }
 
-// Largest distance over one triangle (vertex positions p, parameters uv): `n` random points
-// plus the vertices and edge midpoints.
-template <class Rng>
-double dense_triangle_error(const Surface& surface, const Vec3 p[3], const Vec2 uv[3], int n,
-                            Rng& rng) {
+// Visits the dense measurement points of one triangle as fn(b0, b1, b2): `n` uniformly random
+// points, then the vertices and edge midpoints.
+template <class Rng, class Fn>
+void for_each_dense_point(int n, Rng& rng, Fn&& fn) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  double worst = 0.0;
   for (int k = 0; k < n; ++k) {
     double a = u01(rng), b = u01(rng);
     if (a + b > 1) a = 1 - a, b = 1 - b;
-    worst = std::max(worst, distance_at(surface, p, uv, 1 - a - b, a, b));
+    fn(1 - a - b, a, b);
   }
   for (int i = 0; i < 3; ++i) {
     double b[3] = {0, 0, 0};
     b[i] = 1;
-    worst = std::max(worst, distance_at(surface, p, uv, b[0], b[1], b[2]));
+    fn(b[0], b[1], b[2]);
     b[i] = b[(i + 1) % 3] = 0.5;
-    worst = std::max(worst, distance_at(surface, p, uv, b[0], b[1], b[2]));
+    fn(b[0], b[1], b[2]);
   }
+}
+
+// Largest distance over one triangle (vertex positions p, parameters uv).
+template <class Rng>
+double dense_triangle_error(const Surface& surface, const Vec3 p[3], const Vec2 uv[3], int n,
+                            Rng& rng) {
+  double worst = 0.0;
+  for_each_dense_point(n, rng, [&](double b0, double b1, double b2) {
+    worst = std::max(worst, distance_at(surface, p, uv, b0, b1, b2));
+  });
   return worst;
 }
 
@@ -60,14 +68,6 @@ inline DenseError dense_error(
     const std::function<bool(Face)>& keep = [](Face) { return true; }) {
   DenseError result;
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  auto consider = [&](double d, const Vec3 p[3], double b0, double b1, double b2) {
-    ++result.points;
-    if (d > result.max_error) {
-      result.max_error = d;
-      result.worst = b0 * p[0] + b1 * p[1] + b2 * p[2];
-    }
-  };
   for (Face f : mesh.live_faces()) {
     if (!keep(f)) continue;
     const auto v = mesh.vertices(f);
@@ -75,19 +75,14 @@ inline DenseError dense_error(
     const Vec2 uv[3] = {mesh.uv(v[0]), mesh.uv(v[1]), mesh.uv(v[2])};
     const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     const auto n = static_cast<int>(std::max(3.0, std::ceil(density * area)));
-    for (int k = 0; k < n; ++k) {
-      double a = u01(rng), b = u01(rng);
-      if (a + b > 1) a = 1 - a, b = 1 - b;
-      consider(distance_at(surface, p, uv, 1 - a - b, a, b), p, 1 - a - b, a, b);
-    }
-    for (int i = 0; i < 3; ++i) {
-      double b[3] = {0, 0, 0};
-      b[i] = 1;
-      consider(distance_at(surface, p, uv, b[0], b[1], b[2]), p, b[0], b[1], b[2]);
-      b[(i + 1) % 3] = 0.5;
-      b[i] = 0.5;
-      consider(distance_at(surface, p, uv, b[0], b[1], b[2]), p, b[0], b[1], b[2]);
-    }
+    for_each_dense_point(n, rng, [&](double b0, double b1, double b2) {
+      const double d = distance_at(surface, p, uv, b0, b1, b2);
+      ++result.points;
+      if (d > result.max_error) {
+        result.max_error = d;
+        result.worst = b0 * p[0] + b1 * p[1] + b2 * p[2];
+      }
+    });
   }
   return result;
 }
