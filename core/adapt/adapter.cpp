@@ -179,7 +179,8 @@ void Adapter::normal_correction() {
 }
 
 void Adapter::tangential_correction() {
-  const SmoothingResult r = smooth_tangentially(mesh_, surface_, options_.smoothing);
+  const SmoothingResult r =
+      smooth_tangentially(mesh_, surface_, options_.smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
   stats_.smoothing_moved = r.moved;
   stats_.smoothing_reverted = r.reverted;
@@ -199,9 +200,10 @@ double Adapter::split_urgency(Face f, bool initial) const {
 }
 
 double Adapter::weld_ceiling(const DiamondChange& plan) const {
+  const double current = star_error(plan);
   double ceiling = std::numeric_limits<double>::infinity();
   for (const auto& c : criteria_)
-    if (c->applies_to(mesh_, plan)) ceiling = std::min(ceiling, c->weld_error_ceiling());
+    if (c->applies_to(mesh_, plan)) ceiling = std::min(ceiling, c->weld_error_ceiling(current));
   return ceiling;
 }
 

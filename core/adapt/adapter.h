@@ -88,6 +88,7 @@ class Adapter {
   Mesh48 mesh_;
   SampleStore samples_;
   std::unique_ptr<Tracker> tracker_;
+  SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
   std::uint64_t step_ = 0;
   double last_time_ = 0.0;

@@ -1,5 +1,6 @@
 #include "core/adapt/criteria.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dynamesh {
@@ -9,6 +10,11 @@ GeometricErrorCriterion::GeometricErrorCriterion(double threshold, double epsilo
 
 double GeometricErrorCriterion::split_urgency(const SplitQuery& q) const {
   return q.error / (q.initial ? threshold_ : split_above_);
+}
+
+// Exactly the bound allows_weld applies: below T - eps always, up to T + eps without gain.
+double GeometricErrorCriterion::weld_error_ceiling(double current_error) const {
+  return std::max(weld_below_, std::min(split_above_, kNoGain * current_error));
 }
 
 bool GeometricErrorCriterion::allows_weld(const WeldQuery& q) const {

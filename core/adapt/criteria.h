@@ -44,9 +44,12 @@ class Criterion {
   // first), <= 1 does not.
   virtual double split_urgency(const SplitQuery& q) const = 0;
   virtual bool allows_weld(const WeldQuery& q) const = 0;
-  // The largest post-weld error this criterion can ever allow (for pruning weld candidates
-  // with a cheap lower bound of that error); unbounded by default.
-  virtual double weld_error_ceiling() const { return std::numeric_limits<double>::infinity(); }
+  // The largest post-weld error this criterion can allow for a star whose error is now
+  // `current_error` (WeldQuery::current_error): weld candidates are pruned with cheap lower
+  // bounds of that error. Unbounded by default.
+  virtual double weld_error_ceiling(double /*current_error*/) const {
+    return std::numeric_limits<double>::infinity();
+  }
   // Whether the criterion speaks for this face / weld at all (regions).
   virtual bool applies_to(const Mesh48&, Face) const { return true; }
   virtual bool applies_to(const Mesh48&, const DiamondChange&) const { return true; }
@@ -64,7 +67,7 @@ class GeometricErrorCriterion final : public Criterion {
  public:
   GeometricErrorCriterion(double threshold, double epsilon);
   std::string name() const override { return "error"; }
-  double weld_error_ceiling() const override { return split_above_; }
+  double weld_error_ceiling(double current_error) const override;
   double split_urgency(const SplitQuery& q) const override;
   bool allows_weld(const WeldQuery& q) const override;
 
@@ -99,7 +102,9 @@ class HalfSpaceCriterion final : public Criterion {
   std::string name() const override;
   double split_urgency(const SplitQuery& q) const override { return inner_->split_urgency(q); }
   bool allows_weld(const WeldQuery& q) const override { return inner_->allows_weld(q); }
-  double weld_error_ceiling() const override { return inner_->weld_error_ceiling(); }
+  double weld_error_ceiling(double current_error) const override {
+    return inner_->weld_error_ceiling(current_error);
+  }
   bool applies_to(const Mesh48& mesh, Face f) const override;
   bool applies_to(const Mesh48& mesh, const DiamondChange& plan) const override;
 

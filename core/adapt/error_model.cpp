@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace dynamesh {
 namespace {
@@ -9,10 +10,49 @@ namespace {
 // Barycentric lattice of order 8 (45 points): fine enough that the fitted quadratic's
 // maximum between lattice points exceeds the lattice maximum by under 1%.
 constexpr int kLatticeOrder = 8;
+constexpr int kLatticePoints = (kLatticeOrder + 1) * (kLatticeOrder + 2) / 2;
 constexpr double kMinExplained = 0.7;
+// Below this reciprocal condition number (1-norm) the samples, crowded along one edge, leave
+// a coefficient undetermined.
+constexpr double kMinRcond = 1e-6;
 
 Vec3 edge_weights(const Vec3& b) {
   return Vec3(b[1] * b[2], b[2] * b[0], b[0] * b[1]);
+}
+
+// The edge weights at every lattice point, computed once.
+const std::array<Vec3, kLatticePoints>& lattice_weights() {
+  static const std::array<Vec3, kLatticePoints> table = [] {
+    std::array<Vec3, kLatticePoints> w;
+    int n = 0;
+    for (int i = 0; i <= kLatticeOrder; ++i)
+      for (int j = 0; i + j <= kLatticeOrder; ++j)
+        w[n++] = edge_weights(Vec3(kLatticeOrder - i - j, i, j) / kLatticeOrder);
+    return w;
+  }();
+  return table;
+}
+
+double norm1(const Eigen::Matrix3d& m) {
+  return m.cwiseAbs().colwise().sum().maxCoeff();
+}
+
+// Largest |a b1 b2 + b b2 b0 + c b0 b1| over the triangle b >= 0, b0 + b1 + b2 = 1. On an edge
+// only one term survives, largest at the midpoint (a / 4, ...); inside, r is a quadratic in
+// (x, y) = (b1, b2) whose stationary point solves
+//   [-2c, d; d, -2b] (x, y) = (-c, -b),  d = a - b - c.
+double scalar_maximum(double a, double b, double c) {
+  double best = 0.25 * std::max({std::abs(a), std::abs(b), std::abs(c)});
+  const double d = a - b - c;
+  const double det = 4.0 * b * c - d * d;
+  if (det != 0.0) {
+    const double x = (2.0 * b * c + b * d) / det, y = (2.0 * b * c + c * d) / det;
+    if (x > 0.0 && y > 0.0 && x + y < 1.0) {
+      const double z = 1.0 - x - y;
+      best = std::max(best, std::abs(a * x * y + b * y * z + c * z * x));
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -24,6 +64,7 @@ void QuadraticErrorModel::add(const Vec3& b, const Vec3& residual) {
   sum_squares_ += residual.squaredNorm();
   ++count_;
   sample_max_ = std::max(sample_max_, residual.norm());
+  vector_ = vector_ || residual[1] != 0.0 || residual[2] != 0.0;
 }
 
 QuadraticErrorModel::Result QuadraticErrorModel::evaluate() const {
@@ -31,20 +72,23 @@ QuadraticErrorModel::Result QuadraticErrorModel::evaluate() const {
   if (count_ < 3) return unresolved;
   // An exact zero residual everywhere (a flat face of a plane) needs no model.
   if (sum_squares_ == 0.0) return {0.0, true};
-  const Eigen::LDLT<Eigen::Matrix3d> solver(normal_);
-  // Samples crowded along one edge leave a coefficient undetermined: trust the samples.
-  if (solver.info() != Eigen::Success || solver.rcond() < 1e-6) return unresolved;
-  const Eigen::Matrix3d coefficients = solver.solve(moment_);  // row e: edge e's vector
+  // The normal matrix is symmetric 3 x 3: its explicit inverse is cheaper than a
+  // factorisation and gives the exact condition number.
+  const Eigen::Matrix3d inverse = normal_.inverse();
+  if (!inverse.allFinite() || 1.0 / (norm1(normal_) * norm1(inverse)) < kMinRcond)
+    return unresolved;
+  const Eigen::Matrix3d coefficients = inverse * moment_;  // row e: edge e's vector
   // Least squares: the explained part of sum |r|^2 is trace(C^T M).
   const double explained = (coefficients.transpose() * moment_).trace();
   if (count_ > 3 && explained < kMinExplained * sum_squares_) return unresolved;
   double model_max = 0.0;
-  for (int i = 0; i <= kLatticeOrder; ++i) {
-    for (int j = 0; i + j <= kLatticeOrder; ++j) {
-      const Vec3 b(kLatticeOrder - i - j, i, j);
-      const Vec3 r = coefficients.transpose() * edge_weights(b / kLatticeOrder);
-      model_max = std::max(model_max, r.norm());
-    }
+  if (!vector_) {
+    model_max = scalar_maximum(coefficients(0, 0), coefficients(1, 0), coefficients(2, 0));
+  } else {
+    double max2 = 0.0;
+    for (const Vec3& w : lattice_weights())
+      max2 = std::max(max2, (coefficients.transpose() * w).squaredNorm());
+    model_max = std::sqrt(max2);
   }
   return {std::max(sample_max_, model_max), true};
 }

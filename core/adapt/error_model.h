@@ -7,11 +7,15 @@
 // function of the barycentric coordinates b that vanishes at the three vertices, which lie
 // on the surface. To second order it is therefore r(b) = A b1 b2 + B b2 b0 + C b0 b1 with one
 // coefficient vector per edge. The model fits A, B, C to the samples by least squares and
-// evaluates |r| on a fine barycentric lattice; the triangle's error is the larger of that
-// and the largest sample. This improves on the paper's pure sampling (Section 3.1).
+// takes the maximum of |r| over the triangle: in closed form for a scalar residual (a
+// quadratic's extremum lies at an edge midpoint or at its one stationary point), on a fine
+// barycentric lattice for a vector one; the triangle's error is the larger of that and the
+// largest sample. This improves on the paper's pure sampling (Section 3.1).
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 
 #include "core/geometry/vector_types.h"
 
@@ -20,6 +24,15 @@ namespace dynamesh {
 class QuadraticErrorModel {
  public:
   void add(const Vec3& b, const Vec3& residual);
+  // A scalar residual (an implicit surface's signed distance): add(b, (r, 0, 0)), cheaper.
+  void add(const Vec3& b, double residual) {
+    const Vec3 w(b[1] * b[2], b[2] * b[0], b[0] * b[1]);
+    normal_.noalias() += w * w.transpose();
+    moment_.col(0) += residual * w;
+    sum_squares_ += residual * residual;
+    ++count_;
+    sample_max_ = std::max(sample_max_, std::abs(residual));
+  }
   // Largest sample error seen.
   double sample_max() const { return sample_max_; }
   // max(sample_max, the fitted model's maximum over the triangle); sample_max alone when
@@ -42,6 +55,7 @@ class QuadraticErrorModel {
   double sum_squares_ = 0.0;                          // sum of |r|^2
   int count_ = 0;
   double sample_max_ = 0.0;
+  bool vector_ = false;  // some residual had a non-zero second or third component
 };
 
 }  // namespace dynamesh

@@ -34,33 +34,41 @@ double face_area(const Mesh48& mesh, Face f) {
 SampleStore::SampleStore(double density, std::uint64_t seed) : density_(density), seed_(seed) {}
 
 void SampleStore::grow_faces(std::size_t capacity) {
-  if (face_head_.size() >= capacity) return;
-  face_head_.resize(capacity, kInvalidIndex);
+  if (face_start_.size() >= capacity) return;
+  face_start_.resize(capacity, 0);
   face_count_.resize(capacity, 0);
   face_error_.resize(capacity, 0.0);
   face_dense_.resize(capacity, 0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
-  for (std::uint32_t s = face_head_[f]; s != kInvalidIndex; s = samples_[s].next)
-    free_.push_back(s);
-  face_head_[f] = kInvalidIndex;
+  garbage_ += face_count_[f];
+  face_start_[f] = 0;
   face_count_[f] = 0;
 }
 
-void SampleStore::push(std::uint32_t f, float b1, float b2, float error) {
-  std::uint32_t s;
-  if (!free_.empty()) {
-    s = free_.back();
-    free_.pop_back();
-  } else {
-    s = static_cast<std::uint32_t>(samples_.size());
-    samples_.push_back({});
+SampleStore::Sample* SampleStore::allocate(std::uint32_t f, std::uint32_t n) {
+  clear_face(f);
+  face_start_[f] = static_cast<std::uint32_t>(samples_.size());
+  face_count_[f] = n;
+  samples_.resize(samples_.size() + n);
+  return samples_.data() + face_start_[f];
+}
+
+void SampleStore::compact_if_wasteful() {
+  // Amortised O(1) per sample: a compaction halves the pool at least.
+  if (garbage_ >= 4096 && 2 * garbage_ >= samples_.size()) compact();
+}
+
+void SampleStore::compact() {
+  spare_.clear();
+  for (std::size_t f = 0; f < face_count_.size(); ++f) {
+    const auto first = samples_.begin() + face_start_[f];
+    face_start_[f] = static_cast<std::uint32_t>(spare_.size());
+    spare_.insert(spare_.end(), first, first + face_count_[f]);
   }
-  samples_[s] = {b1, b2, error, face_head_[f]};
-  face_head_[f] = s;
-  ++face_count_[f];
-  face_error_[f] = std::max(face_error_[f], static_cast<double>(error));
+  samples_.swap(spare_);
+  garbage_ = 0;
 }
 
 std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
@@ -71,11 +79,11 @@ std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
 // Stratified: the barycentric triangle is cut into k^2 congruent cells (k(k+1)/2 upright,
 // k(k-1)/2 inverted), k^2 >= the target, and one uniformly jittered sample is drawn per cell.
 void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count) {
-  clear_face(f);
   face_error_[f] = 0.0;
   face_dense_[f] = min_count > 0;
   const std::uint32_t n = std::max(target_count(mesh, Face(f)), min_count);
   const auto k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  Sample* out = allocate(f, static_cast<std::uint32_t>(k * k));
   std::uint64_t state = mix(seed_ ^ mix(++patterns_drawn_));
   const double h = 1.0 / k;
   for (int i = 0; i < k; ++i) {
@@ -86,7 +94,7 @@ void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_
         // Cell corner and edge vectors in (b1, b2); the inverted cell is the point reflection.
         const double s = inverted ? -1.0 : 1.0;
         const double c1 = (j + inverted) * h, c2 = (i + inverted) * h;
-        push(f, static_cast<float>(c1 + s * r1 * h), static_cast<float>(c2 + s * r2 * h), 0.0f);
+        *out++ = {static_cast<float>(c1 + s * r1 * h), static_cast<float>(c2 + s * r2 * h), 0.0f};
       }
     }
   }
@@ -94,8 +102,8 @@ void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_
 
 void SampleStore::reset(const Mesh48& mesh) {
   samples_.clear();
-  free_.clear();
-  face_head_.assign(mesh.face_capacity(), kInvalidIndex);
+  garbage_ = 0;
+  face_start_.assign(mesh.face_capacity(), 0);
   face_count_.assign(mesh.face_capacity(), 0);
   face_error_.assign(mesh.face_capacity(), 0.0);
   face_dense_.assign(mesh.face_capacity(), 0);
@@ -107,12 +115,24 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   const Vec3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
   const Vec2 uv[3] = {mesh.uv(v[0]), mesh.uv(v[1]), mesh.uv(v[2])};
   QuadraticErrorModel model;
-  for (std::uint32_t s = face_head_[f.idx]; s != kInvalidIndex; s = samples_[s].next) {
-    Sample& x = samples_[s];
-    const Vec3 b(1.0 - x.b1 - x.b2, x.b1, x.b2);
-    const Vec3 r = probe.residual_at(p, uv, b);
-    x.error = static_cast<float>(r.norm());
-    model.add(b, r);
+  Sample* const first = samples_.data() + face_start_[f.idx];
+  Sample* const last = first + face_count_[f.idx];
+  if (probe.parametric()) {
+    for (Sample* x = first; x != last; ++x) {
+      const Vec3 b(1.0 - x->b1 - x->b2, x->b1, x->b2);
+      const Vec3 r = probe.residual_at(p, uv, b);
+      x->error = static_cast<float>(r.norm());
+      model.add(b, r);
+    }
+  } else {
+    // The common implicit case without the vector residual's detour (one evaluation and
+    // one square root per sample).
+    for (Sample* x = first; x != last; ++x) {
+      const Vec3 b(1.0 - x->b1 - x->b2, x->b1, x->b2);
+      const double r = probe.signed_distance(b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
+      x->error = static_cast<float>(std::abs(r));
+      model.add(b, r);
+    }
   }
   const QuadraticErrorModel::Result r = model.evaluate();
   face_error_[f.idx] = r.error;
@@ -122,6 +142,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
 void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
                                  const std::vector<Face>& faces) {
   grow_faces(mesh.face_capacity());
+  compact_if_wasteful();
   // Member scratch buffers: this runs after every split, so it must not allocate.
   std::vector<Face>& pending = pending_;
   std::vector<Face>& next = next_pending_;
@@ -168,11 +189,13 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
     QuadraticErrorModel model;
     for (int child = 0; child < 2; ++child) {
       for_each_sample(half.children[child], [&](const Vec3& b, double) {
+        if (model.sample_max() > ceiling) return;  // decided: skip the remaining samples
         const Vec3 pb = to_parent_coordinates(b, child);
         model.add(pb, probe.residual_at(p, uv, pb));
       });
     }
-    worst = std::max(worst, model.estimate());
+    worst = std::max(worst, model.sample_max() > ceiling ? model.sample_max() : model.estimate());
+    if (worst > ceiling) return worst;
   }
   return worst;
 }
@@ -194,10 +217,8 @@ SampleStore::Summary SampleStore::summary(const Mesh48& mesh) const {
   double sum = 0.0;
   for (Face f : mesh.live_faces()) {
     s.max_error = std::max(s.max_error, face_error_[f.idx]);
-    for (std::uint32_t i = face_head_[f.idx]; i != kInvalidIndex; i = samples_[i].next) {
-      sum += samples_[i].error;
-      ++s.samples;
-    }
+    for_each_sample(f, [&](const Vec3&, double error) { sum += error; });
+    s.samples += face_count_[f.idx];
   }
   s.mean_error = s.samples ? sum / static_cast<double>(s.samples) : 0.0;
   return s;
@@ -207,58 +228,65 @@ void SampleStore::after_split(Mesh48& mesh, const DiamondChange& change) {
   grow_faces(mesh.face_capacity());
   for (int h = 0; h < change.count; ++h) {
     const Bisection& half = change.halves[h];
-    const std::uint32_t parent = half.parent.idx;
-    scratch_.clear();
-    for (std::uint32_t s = face_head_[parent]; s != kInvalidIndex; s = samples_[s].next)
-      scratch_.push_back(s);
-    const std::uint32_t child[2] = {half.children[0].idx, half.children[1].idx};
-    for (std::uint32_t c : child) {
-      face_head_[c] = kInvalidIndex;
-      face_count_[c] = 0;
+    const std::uint32_t start = face_start_[half.parent.idx], n = face_count_[half.parent.idx];
+    // Partition the parent's range in place: child 0's samples first, then child 1's.
+    Sample* const first = samples_.data() + start;
+    auto child_of = [](const Sample& x) {
+      return bisection_child(Eigen::Vector3f(1.0f - x.b1 - x.b2, x.b1, x.b2));
+    };
+    Sample* const middle =
+        std::partition(first, first + n, [&](const Sample& x) { return child_of(x) == 0; });
+    for (Sample* x = first; x != first + n; ++x) {
+      const Eigen::Vector3f c = to_child_coordinates(
+          Eigen::Vector3f(1.0f - x->b1 - x->b2, x->b1, x->b2), x < middle ? 0 : 1);
+      x->b1 = c[1];
+      x->b2 = c[2];
+    }
+    const auto n0 = static_cast<std::uint32_t>(middle - first);
+    const std::uint32_t c0 = half.children[0].idx, c1 = half.children[1].idx;
+    face_start_[c0] = start;
+    face_count_[c0] = n0;
+    face_start_[c1] = start + n0;
+    face_count_[c1] = n - n0;
+    for (std::uint32_t c : {c0, c1}) {
       face_error_[c] = 0.0;
-    }
-    for (std::uint32_t s : scratch_) {
-      Sample& x = samples_[s];
-      const Eigen::Vector3f b(1.0f - x.b1 - x.b2, x.b1, x.b2);
-      const int which = bisection_child(b);
-      const Eigen::Vector3f cb = to_child_coordinates(b, which);
-      x.b1 = cb[1];
-      x.b2 = cb[2];
-      x.next = face_head_[child[which]];
-      face_head_[child[which]] = s;
-      ++face_count_[child[which]];
-    }
-    for (std::uint32_t c : child)
       if (face_count_[c] < kMinSamplesPerFace) draw_pattern(mesh, c);
+    }
   }
 }
 
 void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
   for (int h = 0; h < change.count; ++h) {
     const Bisection& half = change.halves[h];
-    scratch_.clear();
+    const std::uint32_t c[2] = {half.children[0].idx, half.children[1].idx};
     for (int which = 0; which < 2; ++which) {
-      const std::uint32_t c = half.children[which].idx;
-      for (std::uint32_t s = face_head_[c]; s != kInvalidIndex; s = samples_[s].next) {
-        Sample& x = samples_[s];
-        const Eigen::Vector3f pb =
-            to_parent_coordinates(Eigen::Vector3f(1.0f - x.b1 - x.b2, x.b1, x.b2), which);
-        x.b1 = pb[1];
-        x.b2 = pb[2];
-        scratch_.push_back(s);
+      Sample* const first = samples_.data() + face_start_[c[which]];
+      for (Sample* x = first; x != first + face_count_[c[which]]; ++x) {
+        const Eigen::Vector3f p =
+            to_parent_coordinates(Eigen::Vector3f(1.0f - x->b1 - x->b2, x->b1, x->b2), which);
+        x->b1 = p[1];
+        x->b2 = p[2];
       }
     }
-    const std::uint32_t parent = half.parent.idx;
-    face_head_[parent] = kInvalidIndex;
-    face_count_[parent] = 0;
-    face_error_[parent] = 0.0;
-    face_head_[half.children[1].idx] = kInvalidIndex;
-    face_count_[half.children[1].idx] = 0;
-    for (std::uint32_t s : scratch_) {
-      samples_[s].next = face_head_[parent];
-      face_head_[parent] = s;
-      ++face_count_[parent];
+    const std::uint32_t s0 = face_start_[c[0]], n0 = face_count_[c[0]];
+    const std::uint32_t s1 = face_start_[c[1]], n1 = face_count_[c[1]];
+    std::uint32_t start;
+    if (n1 == 0 || s0 + n0 == s1) {
+      start = s0;  // the children of one split, untouched since: already one range
+    } else if (n0 == 0 || s1 + n1 == s0) {
+      start = s1;
+    } else {
+      start = static_cast<std::uint32_t>(samples_.size());
+      samples_.resize(samples_.size() + n0 + n1);
+      std::copy_n(samples_.begin() + s0, n0, samples_.begin() + start);
+      std::copy_n(samples_.begin() + s1, n1, samples_.begin() + start + n0);
+      garbage_ += n0 + n1;
     }
+    face_count_[c[1]] = 0;
+    const std::uint32_t parent = half.parent.idx;
+    face_start_[parent] = start;
+    face_count_[parent] = n0 + n1;
+    face_error_[parent] = 0.0;
     if (face_count_[parent] > 2 * target_count(mesh, half.parent)) draw_pattern(mesh, parent);
   }
 }

@@ -8,8 +8,13 @@
 // coordinates of the face that now holds it, so the density is kept without drawing new samples; a
 // face left with none, or with a count far from D * area, gets a fresh pattern.
 //
-// Storage: one pool of samples with a free list; each face slot heads a singly linked list
-// of its samples. No allocation per operation once the pool has grown.
+// Storage: one pool of samples in which each face owns a contiguous range, so that measuring
+// a face streams through memory (with a linked list per face, chasing scattered samples cost
+// as much as evaluating the surface at them). A split partitions its parent's range in place
+// into the two children's; a weld of two adjacent ranges (the usual case: the children of
+// one split) joins them in place, otherwise the merged range and any new pattern go to the
+// end of the pool. Ranges left behind are garbage; when they outweigh the live samples the
+// pool is compacted in face order. No allocation per operation once the pool has grown.
 #pragma once
 
 #include <cstdint>
@@ -45,7 +50,9 @@ class SampleStore final : public MeshListener {
   // measured against the two (one) parent triangles, with the quadratic model.
   // The estimate also covers the restored edge's midpoint (where the removed vertex sat),
   // measured first: when its error already exceeds `ceiling` the weld cannot be allowed,
-  // and that lower bound is returned without evaluating the samples.
+  // and that lower bound is returned without evaluating the samples. Likewise a sample or a
+  // half above `ceiling` ends the measurement early: the result is then a lower bound above
+  // `ceiling`, which is all a weld decision needs.
   double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
                     double ceiling = std::numeric_limits<double>::infinity()) const;
   // Draws new patterns for faces whose sample count is below half or above twice
@@ -56,7 +63,10 @@ class SampleStore final : public MeshListener {
   // error and the maximum of the quadratic model fitted to its samples (error_model.h).
   double face_error(Face f) const { return face_error_[f.idx]; }
   std::uint32_t count(Face f) const { return face_count_[f.idx]; }
-  std::size_t n_samples() const { return samples_.size() - free_.size(); }
+  // Rewrites the pool with every face's range in face order, dropping the ranges left
+  // behind. Measuring does this by itself whenever those outweigh the live samples.
+  void compact();
+  std::size_t n_samples() const { return samples_.size() - garbage_; }
   // Visits the face's samples as fn(barycentric Vec3, error).
   template <class Fn>
   void for_each_sample(Face f, Fn&& fn) const;
@@ -75,12 +85,14 @@ class SampleStore final : public MeshListener {
   struct Sample {
     float b1, b2;  // barycentric coordinates of vertices 1 and 2; b0 = 1 - b1 - b2
     float error;
-    std::uint32_t next;
   };
 
   void grow_faces(std::size_t capacity);
+  // Gives up the face's range (it becomes garbage) and leaves the face empty.
   void clear_face(std::uint32_t f);
-  void push(std::uint32_t f, float b1, float b2, float error);
+  // Gives the face a new, uninitialised range of n samples at the end of the pool.
+  Sample* allocate(std::uint32_t f, std::uint32_t n);
+  void compact_if_wasteful();
   void draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count = 0);
   // Measures one face; returns whether its error estimate is resolved.
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
@@ -88,23 +100,21 @@ class SampleStore final : public MeshListener {
 
   double density_;
   std::uint64_t seed_;
-  std::uint64_t patterns_drawn_ = 0;  // makes every pattern's jitter distinct and reproducible
-  std::vector<Sample> samples_;
-  std::vector<std::uint32_t> free_;
-  std::vector<std::uint32_t> face_head_, face_count_;
+  std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
+  std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
+  std::size_t garbage_ = 0;              // samples in no face's range
+  std::vector<std::uint32_t> face_start_, face_count_;
   std::vector<double> face_error_;
   std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
-  std::vector<std::uint32_t> scratch_;        // sample ids while redistributing
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
   std::vector<std::uint8_t> unresolved_;
 };
 
 template <class Fn>
 void SampleStore::for_each_sample(Face f, Fn&& fn) const {
-  for (std::uint32_t s = face_head_[f.idx]; s != kInvalidIndex; s = samples_[s].next) {
-    const Sample& x = samples_[s];
-    fn(Vec3(1.0 - x.b1 - x.b2, x.b1, x.b2), static_cast<double>(x.error));
-  }
+  const Sample* x = samples_.data() + face_start_[f.idx];
+  for (std::uint32_t i = 0; i < face_count_[f.idx]; ++i)
+    fn(Vec3(1.0 - x[i].b1 - x[i].b2, x[i].b1, x[i].b2), static_cast<double>(x[i].error));
 }
 
 }  // namespace dynamesh

@@ -42,12 +42,16 @@ Vec3 SurfaceProbe::residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b)
     return x - parametric_->position(
                    parametric_->wrap_into_domain(b[0] * uv[0] + b[1] * uv1 + b[2] * uv2));
   }
+  return Vec3(signed_distance(x), 0, 0);
+}
+
+double SurfaceProbe::signed_distance(const Vec3& x) const {
   Vec3 g;
   const double f = implicit_->value_gradient(x, g);
   const double gnorm = g.norm();
   const double first_order = f / gnorm;
-  if (gnorm > 0 && std::abs(first_order) < first_order_limit_) return Vec3(first_order, 0, 0);
-  return Vec3(std::copysign(distance_to_surface(*implicit_, x), f), 0, 0);
+  if (gnorm > 0 && std::abs(first_order) < first_order_limit_) return first_order;
+  return std::copysign(distance_to_surface(*implicit_, x), f);
 }
 
 Vec3 SurfaceProbe::normal_at(const Mesh48& mesh, Vertex v) const {

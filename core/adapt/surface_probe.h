@@ -33,6 +33,9 @@ class SurfaceProbe {
   // The error as a vector that varies smoothly over the triangle (for QuadraticErrorModel):
   // parametric x - S(uv); implicit (signed distance, 0, 0).
   Vec3 residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const;
+  // Implicit only: the signed distance of x to the surface (negative inside), the scalar
+  // residual_at() wraps.
+  double signed_distance(const Vec3& x) const;
 
   // Unit normal of the surface at a vertex (parametric: at its (u, v)).
   Vec3 normal_at(const Mesh48& mesh, Vertex v) const;

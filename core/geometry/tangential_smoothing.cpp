@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/parallel.h"
@@ -15,20 +16,42 @@ struct Frame {
   double l1 = 0, l2 = 0;  // curvature magnitudes as used by Equation 1
 };
 
+}  // namespace
+
 // The state one iteration reads (old positions) and writes (candidates).
-struct Work {
+struct SmoothingWorkspace::Buffers {
   std::vector<Frame> frame;
   std::vector<Vec3> position;
   std::vector<Vec2> uv;
   std::vector<std::uint8_t> moved;
+  std::vector<std::uint8_t> bad;  // per face slot: fails the guards
+  std::vector<Face> check, next_check;
 };
 
-double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& at, const Vec3& p, const Vec3& q) {
-    const Vec3 u = p - at, v = q - at;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * 180.0 / M_PI;
+SmoothingWorkspace::SmoothingWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+SmoothingWorkspace::~SmoothingWorkspace() = default;
+
+namespace {
+
+using Work = SmoothingWorkspace::Buffers;
+
+// Cosine of the triangle's smallest angle, the one opposite its shortest edge (1 for a
+// degenerate triangle). Comparing cosines avoids three atan2 per face: the angle is
+// decreasing in its cosine on [0, pi].
+double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  // The angle opposite the shortest edge lies between the two other edges.
+  Vec3 u, v;
+  if (lab <= lbc && lab <= lca) {
+    u = a - c, v = b - c;
+  } else if (lbc <= lca) {
+    u = b - a, v = c - a;
+  } else {
+    u = a - b, v = c - b;
+  }
+  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
+  return norms > 0 ? u.dot(v) / norms : 1.0;
 }
 
 // Centroid of the one-ring, without allocating. Uniform weights are the paper's; inverse
@@ -134,36 +157,52 @@ bool implicit_candidate(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, 
   return true;
 }
 
-// A face is acceptable when it faces the same way as the surface and its smallest angle is
-// not pushed below the limit (or is no worse than it was).
-bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double limit) {
+// A face is acceptable when none of its vertices moved, or when it faces the same way as the
+// surface and its smallest angle is not pushed below the limit (or is no worse than it was).
+// `cos_limit`: the cosine of the limit angle.
+bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double cos_limit) {
   const auto v = mesh.vertices(f);
+  if (!w.moved[v[0].idx] && !w.moved[v[1].idx] && !w.moved[v[2].idx]) return true;
   const Vec3 &a = w.position[v[0].idx], &b = w.position[v[1].idx], &c = w.position[v[2].idx];
   const Vec3 surface_normal =
       w.frame[v[0].idx].k.normal + w.frame[v[1].idx].k.normal + w.frame[v[2].idx].k.normal;
   if ((b - a).cross(c - a).dot(surface_normal) <= 0) return false;
-  const double now = min_angle_deg(a, b, c);
-  if (now >= limit) return true;
-  return now >= min_angle_deg(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
+  const double now = smallest_angle_cosine(a, b, c);
+  if (now <= cos_limit) return true;
+  return now <=
+         smallest_angle_cosine(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
 }
 
-// Undoes moves around unacceptable faces until none is left (Jacobi moves interact).
-std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit) {
+// Undoes moves around unacceptable faces until none is left (Jacobi moves interact): every
+// face is checked once, in parallel; afterwards only the faces around undone moves.
+std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit_deg) {
+  const double cos_limit = std::cos(limit_deg * M_PI / 180.0);
+  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  w.bad.assign(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (mesh.is_alive(f))
+      w.bad[static_cast<std::size_t>(i)] = !face_acceptable(mesh, w, f, cos_limit);
+  }
+  w.check.clear();
+  for (std::int64_t i = 0; i < n; ++i)
+    if (w.bad[static_cast<std::size_t>(i)]) w.check.push_back(Face(static_cast<std::uint32_t>(i)));
   std::size_t reverted = 0;
-  for (int round = 0; round < 8; ++round) {
-    std::size_t this_round = 0;
-    for (Face f : mesh.live_faces()) {
-      if (face_acceptable(mesh, w, f, limit)) continue;
+  for (int round = 0; round < 8 && !w.check.empty(); ++round) {
+    w.next_check.clear();
+    for (Face f : w.check) {
+      if (face_acceptable(mesh, w, f, cos_limit)) continue;
       for (Vertex v : mesh.vertices(f)) {
         if (!w.moved[v.idx]) continue;
         w.moved[v.idx] = 0;
         w.position[v.idx] = mesh.position(v);
         w.uv[v.idx] = mesh.uv(v);
-        ++this_round;
+        ++reverted;
+        mesh.for_each_corner_around(v, [&](Corner c) { w.next_check.push_back(c.face); });
       }
     }
-    reverted += this_round;
-    if (this_round == 0) break;
+    w.check.swap(w.next_check);
   }
   return reverted;
 }
@@ -205,10 +244,12 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
 }  // namespace
 
 SmoothingResult smooth_tangentially(Mesh48& mesh, const Surface& surface,
-                                    const SmoothingOptions& options) {
+                                    const SmoothingOptions& options,
+                                    SmoothingWorkspace* workspace) {
   SmoothingResult total;
   if (!options.enabled) return total;
-  Work work;
+  std::optional<SmoothingWorkspace> local;
+  Work& work = (workspace ? *workspace : local.emplace()).buffers();
   for (int it = 0; it < options.iterations; ++it) {
     const SmoothingResult r = smooth_once(mesh, surface, options, work);
     total.moved += r.moved;

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 #include "core/mesh/mesh48.h"
 #include "core/surface/surface.h"
@@ -40,7 +41,23 @@ struct SmoothingResult {
   std::size_t projection_failures = 0;
 };
 
+// Scratch buffers of smooth_tangentially, kept by a caller that smooths every step so that
+// a step reuses their memory instead of allocating (and page-faulting) it anew.
+class SmoothingWorkspace {
+ public:
+  SmoothingWorkspace();
+  ~SmoothingWorkspace();
+  SmoothingWorkspace(const SmoothingWorkspace&) = delete;
+  SmoothingWorkspace& operator=(const SmoothingWorkspace&) = delete;
+  struct Buffers;
+  Buffers& buffers() { return *buffers_; }
+
+ private:
+  std::unique_ptr<Buffers> buffers_;
+};
+
 SmoothingResult smooth_tangentially(Mesh48& mesh, const Surface& surface,
-                                    const SmoothingOptions& options);
+                                    const SmoothingOptions& options,
+                                    SmoothingWorkspace* workspace = nullptr);
 
 }  // namespace dynamesh

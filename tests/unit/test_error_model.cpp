@@ -1,0 +1,102 @@
+// QuadraticErrorModel (core/adapt/error_model.h) against brute force: residuals that are
+// exactly r(b) = A b1 b2 + B b2 b0 + C b0 b1 must be fitted exactly, and the model's maximum
+// must equal max |r| found on a dense barycentric grid (exactly for a scalar residual, whose
+// maximum is in closed form; within the lattice's 1% for a vector one).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/adapt/error_model.h"
+
+namespace dynamesh {
+namespace {
+
+Vec3 quadratic(const Eigen::Matrix3d& coefficients, const Vec3& b) {
+  const Vec3 w(b[1] * b[2], b[2] * b[0], b[0] * b[1]);
+  return coefficients.transpose() * w;
+}
+
+double dense_maximum(const Eigen::Matrix3d& coefficients) {
+  constexpr int kOrder = 600;
+  double best = 0.0;
+  for (int i = 0; i <= kOrder; ++i)
+    for (int j = 0; i + j <= kOrder; ++j)
+      best = std::max(best, quadratic(coefficients, Vec3(kOrder - i - j, i, j) / kOrder).norm());
+  return best;
+}
+
+Vec3 random_barycentric(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double a = u(rng), b = u(rng);
+  if (a + b > 1) a = 1 - a, b = 1 - b;
+  return Vec3(1 - a - b, a, b);
+}
+
+TEST(QuadraticErrorModel, ScalarMaximumMatchesDenseSearch) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int interior_maxima = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+    c.col(0) = Vec3(n(rng), n(rng), n(rng));
+    QuadraticErrorModel model;
+    for (int s = 0; s < 16; ++s) {
+      const Vec3 b = random_barycentric(rng);
+      model.add(b, quadratic(c, b));
+    }
+    const QuadraticErrorModel::Result r = model.evaluate();
+    ASSERT_TRUE(r.resolved);
+    const double dense = dense_maximum(c);
+    // The dense grid can only under-estimate the true maximum, by O(h^2).
+    EXPECT_GE(r.error, dense * (1 - 1e-9)) << trial;
+    EXPECT_LE(r.error, dense * (1 + 1e-4)) << trial;
+    if (r.error > 0.25 * c.col(0).cwiseAbs().maxCoeff() * (1 + 1e-6)) ++interior_maxima;
+  }
+  // Both branches (edge midpoint, interior stationary point) were exercised.
+  EXPECT_GT(interior_maxima, 30);
+  EXPECT_LT(interior_maxima, 270);
+}
+
+TEST(QuadraticErrorModel, VectorMaximumWithinOnePercentOfDenseSearch) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    Eigen::Matrix3d c;
+    for (int i = 0; i < 9; ++i) c(i / 3, i % 3) = n(rng);
+    QuadraticErrorModel model;
+    for (int s = 0; s < 16; ++s) {
+      const Vec3 b = random_barycentric(rng);
+      model.add(b, quadratic(c, b));
+    }
+    const QuadraticErrorModel::Result r = model.evaluate();
+    ASSERT_TRUE(r.resolved);
+    const double dense = dense_maximum(c);
+    EXPECT_GE(r.error, 0.99 * dense) << trial;
+    EXPECT_LE(r.error, dense * (1 + 1e-4)) << trial;
+  }
+}
+
+TEST(QuadraticErrorModel, SamplesAlongOneEdgeAreNotTrusted) {
+  QuadraticErrorModel model;
+  for (int s = 1; s < 10; ++s) {
+    const double a = s / 10.0;
+    model.add(Vec3(0.0, a, 1 - a), Vec3(0.3 * a * (1 - a), 0, 0));
+  }
+  const QuadraticErrorModel::Result r = model.evaluate();
+  EXPECT_FALSE(r.resolved);
+  EXPECT_DOUBLE_EQ(r.error, model.sample_max());
+}
+
+TEST(QuadraticErrorModel, NonQuadraticResidualIsNotTrusted) {
+  // Half a ripple across the face: a quadratic vanishing at the corners explains little.
+  std::mt19937_64 rng(3);
+  QuadraticErrorModel model;
+  for (int s = 0; s < 36; ++s) {
+    const Vec3 b = random_barycentric(rng);
+    model.add(b, Vec3(std::sin(12.0 * b[1]) * 0.01, 0, 0));
+  }
+  EXPECT_FALSE(model.evaluate().resolved);
+}
+
+}  // namespace
+}  // namespace dynamesh

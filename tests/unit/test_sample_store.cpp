@@ -1,0 +1,113 @@
+// SampleStore (core/adapt/sample_store.h): samples are points of the surface that follow
+// splits and welds. On a flat mesh whose split vertices stay at edge midpoints, carrying a
+// sample into a child or back into the parent must leave its position in space unchanged,
+// however the store lays its ranges out (in place, appended, compacted).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "core/adapt/criteria.h"
+#include "core/adapt/sample_store.h"
+#include "core/surface/scene_registry.h"
+
+namespace dynamesh {
+namespace {
+
+std::vector<Vec3> world_points(const Mesh48& mesh, const SampleStore& store) {
+  std::vector<Vec3> points;
+  for (Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    store.for_each_sample(f, [&](const Vec3& b, double) {
+      points.push_back(b[0] * mesh.position(v[0]) + b[1] * mesh.position(v[1]) +
+                       b[2] * mesh.position(v[2]));
+    });
+  }
+  std::sort(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return points;
+}
+
+TEST(SampleStore, SamplesKeepTheirPlaceThroughSplitsWeldsAndCompaction) {
+  // sinc at t = 0 is the flat square y = 0: split vertices at midpoints stay on it.
+  const std::unique_ptr<Surface> surface = make_scene("sinc");
+  surface->set_time(0.0);
+  const SurfaceProbe probe(*surface);
+  Mesh48 mesh = surface->base_mesh();
+  // Dense enough that no child falls below the minimum (which would draw a fresh pattern).
+  SampleStore store(40000.0, 5);
+  mesh.add_listener(&store);
+  store.reset(mesh);
+  const std::vector<Vec3> before = world_points(mesh, store);
+  ASSERT_GT(before.size(), 1000u);
+
+  std::mt19937 rng(3);
+  int splits = 0, welds = 0;
+  for (int op = 0; op < 3000; ++op) {
+    if (rng() % 2 == 0) {
+      const std::vector<Face> faces = mesh.live_faces();
+      const Face f = faces[rng() % faces.size()];
+      // Only faces whose children will still hold enough samples.
+      if (store.count(f) >= 4 * SampleStore::kMinSamplesPerFace && mesh.split(f).is_valid())
+        ++splits;
+    } else {
+      const std::vector<Vertex> vertices = mesh.live_vertices();
+      const Vertex v = vertices[rng() % vertices.size()];
+      if (mesh.can_weld(v) && mesh.weld(v)) ++welds;
+    }
+    // Compacted, sibling ranges are no longer adjacent: a weld must then move them.
+    if (op % 100 == 0) store.compact();
+    if (op % 250 == 0) store.evaluate_all(mesh, probe);
+  }
+  store.evaluate_all(mesh, probe);
+  EXPECT_GT(splits, 300);
+  EXPECT_GT(welds, 100);
+
+  std::size_t counted = 0;
+  for (Face f : mesh.live_faces()) {
+    counted += store.count(f);
+    EXPECT_LT(store.face_error(f), 1e-9);  // flat: the samples lie on the surface
+  }
+  EXPECT_EQ(counted, store.n_samples());
+  const std::vector<Vec3> after = world_points(mesh, store);
+  ASSERT_EQ(after.size(), before.size());
+  // Every sample is where one was at the start (barycentric coordinates are floats: a few
+  // float ulps of the unit square). Sorted by x, the match lies within a narrow window.
+  constexpr double kTolerance = 1e-5;
+  std::size_t unmatched = 0;
+  for (const Vec3& p : after) {
+    auto it = std::lower_bound(before.begin(), before.end(), p.x() - kTolerance,
+                               [](const Vec3& a, double x) { return a.x() < x; });
+    bool found = false;
+    for (; it != before.end() && it->x() <= p.x() + kTolerance && !found; ++it)
+      found = (*it - p).norm() < kTolerance;
+    unmatched += !found;
+  }
+  EXPECT_EQ(unmatched, 0u);
+}
+
+TEST(GeometricErrorCriterion, WeldCeilingBoundsEveryAllowedWeld) {
+  const GeometricErrorCriterion c(1e-3, 2.5e-4);
+  const Mesh48 mesh;
+  const DiamondChange plan;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 2e-3);
+  int allowed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double error = u(rng), current = u(rng);
+    const WeldQuery q{mesh, plan, error, current};
+    if (!c.allows_weld(q)) continue;
+    ++allowed;
+    EXPECT_LE(error, c.weld_error_ceiling(current)) << error << " " << current;
+  }
+  EXPECT_GT(allowed, 1000);
+  // And the bound is tight: just above it, never allowed.
+  for (double current : {0.0, 5e-4, 9e-4, 1.1e-3, 2e-3}) {
+    const double ceiling = c.weld_error_ceiling(current);
+    EXPECT_FALSE(c.allows_weld({mesh, plan, ceiling * (1 + 1e-9) + 1e-15, current}));
+  }
+}
+
+}  // namespace
+}  // namespace dynamesh
