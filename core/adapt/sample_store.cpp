@@ -201,26 +201,44 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
 }
 
 std::size_t SampleStore::refresh_patterns(const Mesh48& mesh) {
+  // Which faces need a new pattern is decided in parallel (an area per face); drawing them
+  // shares the pool, so it is sequential.
+  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  unresolved_.assign(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(f)) continue;
+    const std::uint32_t target = target_count(mesh, f), count = face_count_[f.idx];
+    unresolved_[static_cast<std::size_t>(i)] =
+        count == 0 || 2 * count < target || (count > 2 * target && !face_dense_[f.idx]);
+  }
   std::size_t redrawn = 0;
-  for (Face f : mesh.live_faces()) {
-    const std::uint32_t target = target_count(mesh, f), n = face_count_[f.idx];
-    if (n == 0 || 2 * n < target || (n > 2 * target && !face_dense_[f.idx])) {
-      draw_pattern(mesh, f.idx);
-      ++redrawn;
-    }
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!unresolved_[static_cast<std::size_t>(i)]) continue;
+    draw_pattern(mesh, static_cast<std::uint32_t>(i));
+    ++redrawn;
   }
   return redrawn;
 }
 
 SampleStore::Summary SampleStore::summary(const Mesh48& mesh) const {
-  Summary s;
-  double sum = 0.0;
-  for (Face f : mesh.live_faces()) {
-    s.max_error = std::max(s.max_error, face_error_[f.idx]);
+  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  double max_error = 0.0, sum = 0.0;
+  std::size_t samples = 0;
+#pragma omp parallel for schedule(static) reduction(max : max_error) reduction(+ : sum, samples) \
+    if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(f)) continue;
+    max_error = std::max(max_error, face_error_[f.idx]);
     for_each_sample(f, [&](const Vec3&, double error) { sum += error; });
-    s.samples += face_count_[f.idx];
+    samples += face_count_[f.idx];
   }
-  s.mean_error = s.samples ? sum / static_cast<double>(s.samples) : 0.0;
+  Summary s;
+  s.max_error = max_error;
+  s.samples = samples;
+  s.mean_error = samples ? sum / static_cast<double>(samples) : 0.0;
   return s;
 }
 

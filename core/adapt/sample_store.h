@@ -107,7 +107,7 @@ class SampleStore final : public MeshListener {
   std::vector<double> face_error_;
   std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
-  std::vector<std::uint8_t> unresolved_;
+  std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
 };
 
 template <class Fn>
