@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
       try {
         args = parse_viewer_args(words, saved);
         args.camera_scene = saved.controls.scene;
+        args.camera_text = saved.controls.scene_text;
       } catch (const std::exception& e) {  // the command line was fine over the defaults
         std::fprintf(stderr, "dynamesh: ignoring the saved settings in %s (%s)\n",
                      state_file.c_str(), e.what());

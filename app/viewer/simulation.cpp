@@ -104,8 +104,8 @@ StepResult Simulation::step(const StepRequest& request) {
     return result;
   }
   try {
-    const bool new_adapter = request.restart || !adapter_ || !same_surface(c, built_) ||
-                             c.seed != built_.seed;
+    const bool new_adapter =
+        request.restart || !adapter_ || !same_surface(c, built_) || c.seed != built_.seed;
     if (new_adapter) {
       rebuild(request);
       result.stepped = true;
@@ -125,6 +125,7 @@ StepResult Simulation::step(const StepRequest& request) {
         std::make_shared<const MeshSnapshot>(adapter_->snapshot(snapshot_fields(request.fields)));
     result.stats = adapter_->stats();
     result.scene = built_.scene;
+    result.scene_text = built_.scene_text;
     result.parameters = surface_->parameters();
   } catch (const std::exception& e) {
     // The adapter may be half-way through a step: start again from the base mesh next time.

@@ -63,10 +63,11 @@ struct StepRequest {
 
 struct StepResult {
   std::shared_ptr<const MeshSnapshot> snapshot;  // null when the request failed
-  StepStats stats;        // the adapter's last step (initialisation: step 0)
-  bool stepped = false;   // the adapter ran for this request: `stats` are new
-  std::string error;      // non-empty: the request failed
-  std::string scene;      // the scene the adapter runs on
+  StepStats stats;                               // the adapter's last step (initialisation: step 0)
+  bool stepped = false;                      // the adapter ran for this request: `stats` are new
+  std::string error;                         // non-empty: the request failed
+  std::string scene;                         // the scene the adapter runs on
+  TextOptions scene_text;                    // and its text options (the formula of expr)
   std::vector<SurfaceParameter> parameters;  // its parameters, current values and ranges
 };
 
@@ -88,8 +89,8 @@ class Simulation {
   SnapshotFields snapshot_fields(const SnapshotFields& requested) const;
 
   std::unique_ptr<Surface> surface_;
-  std::unique_ptr<Adapter> adapter_;  // refers to *surface_
-  SimulationControls built_;          // the controls surface_ and adapter_ run with
+  std::unique_ptr<Adapter> adapter_;          // refers to *surface_
+  SimulationControls built_;                  // the controls surface_ and adapter_ run with
   std::optional<SimulationControls> failed_;  // the controls of the last failure
   std::string failure_;
 };

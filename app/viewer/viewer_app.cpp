@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -88,9 +88,11 @@ class ViewerApp {
         window_(state_.window_width, state_.window_height, "dynamesh"),
         driver_([] { GlfwWindow::wake(); }),
         scenes_(list_scenes()),
+        examples_(load_formula_examples(find_examples_dir())),
         // Multisampling doubles the cost of a frame on a software renderer: there, none.
         view_samples_(GlfwWindow::is_software_renderer(window_.renderer()) ? 1 : 4),
-        fitted_scene_(args.camera_scene) {
+        fitted_scene_(args.camera_scene),
+        fitted_text_(args.camera_text) {
     if (state_.window_x >= 0 && state_.window_y >= 0)
       window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);
@@ -134,6 +136,7 @@ class ViewerApp {
   MeshRenderer renderer_;
   SimulationDriver driver_;
   const std::vector<SceneInfo> scenes_;
+  const std::vector<FormulaExample> examples_;  // the formula panel's library
   const int view_samples_;
   std::unique_ptr<RenderTarget> view_target_;
   std::optional<ViewKey> view_drawn_;  // what view_target_ holds
@@ -144,9 +147,11 @@ class ViewerApp {
   std::uint64_t colored_snapshot_ = 0;
   ColorMode colored_mode_ = ColorMode::kShaded;
   std::uint64_t field_asked_for_ = 0;  // a missing field was asked for once for this one
-  std::string fitted_scene_;  // the scene the camera was framed for
+  std::string fitted_scene_;           // the scene the camera was framed for
+  TextOptions fitted_text_;            // and its text options
   std::string running_scene_;
   std::vector<SurfaceParameter> running_parameters_;
+  TextOptions running_text_;
   StatsHistory history_;
   StepStats last_stats_;
   std::string error_, status_;
@@ -187,6 +192,7 @@ bool ViewerApp::take_results() {
     } else {
       running_scene_ = r.scene;
       running_parameters_ = r.parameters;
+      running_text_ = r.scene_text;
     }
     if (r.snapshot && r.snapshot != snapshot_) {
       snapshot_ = r.snapshot;
@@ -214,11 +220,18 @@ bool ViewerApp::take_results() {
       request(state_.time, false);
     }
   }
-  // A new scene is framed once (after its colours: the colour bar narrows the view).
-  if (snapshot_ && running_scene_ != fitted_scene_) {
+  // A new scene is framed once (after its colours: the colour bar narrows the view); a new
+  // formula (another example, a torus after a blob) too, seen from where the person looks.
+  if (snapshot_ && (running_scene_ != fitted_scene_ || running_text_ != fitted_text_)) {
     const glm::ivec4 v = view_rect();
-    state_.camera.reset(renderer_.bounds(), float(v.z) / float(std::max(1, v.w)));
+    const float aspect = float(v.z) / float(std::max(1, v.w));
+    if (running_scene_ != fitted_scene_) {
+      state_.camera.reset(renderer_.bounds(), aspect);
+    } else {
+      state_.camera.fit(renderer_.bounds(), aspect);
+    }
     fitted_scene_ = running_scene_;
+    fitted_text_ = running_text_;
   }
   return new_step;
 }
@@ -459,6 +472,8 @@ bool ViewerApp::frame(bool timed_out) {
   info.scenes = &scenes_;
   info.running_scene = running_scene_;
   info.running_parameters = running_parameters_;
+  info.running_text = running_text_;
+  info.examples = &examples_;
   info.history = &history_;
   info.last = last_stats_;
   info.error = error_;

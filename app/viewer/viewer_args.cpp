@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "core/surface/scene_registry.h"
 
@@ -28,6 +29,25 @@ int to_int(const std::string& option, const std::string& text) {
   return static_cast<int>(v);
 }
 
+bool is_whole_number(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// The scene text key an option sets (the same as dynamesh-cli run's), or null. --height is
+// the window height when a whole number follows, as the CLI's image height is, and the
+// height-field formula otherwise.
+const char* text_option_key(const std::string& opt, const std::vector<std::string>& args,
+                            std::size_t i) {
+  static constexpr std::pair<const char*, const char*> kKeys[] = {
+      {"--volume", "volume"},         {"--implicit", "implicit"},  {"--height-field", "height"},
+      {"--parametric", "parametric"}, {"--bounds", "bounds"},      {"--domain", "domain"},
+      {"--periodic", "periodic"},     {"--base-mesh", "base-mesh"}};
+  for (const auto& [option, key] : kKeys)
+    if (opt == option) return key;
+  if (opt == "--height" && i + 1 < args.size() && !is_whole_number(args[i + 1])) return "height";
+  return nullptr;
+}
+
 }  // namespace
 
 std::string viewer_usage() {
@@ -36,6 +56,11 @@ std::string viewer_usage() {
          "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
          "                [--width W] [--height H] [--state FILE | --fresh]\n"
+         "a typed surface (scene expr; edit it in the panel's formula section):\n"
+         "  --implicit F(x,y,z,t) --bounds xmin,ymin,zmin,xmax,ymax,zmax [--base-mesh FILE]\n"
+         "  --height-field f(x,z,t) [--domain xmin,xmax,zmin,zmax]\n"
+         "  --parametric \"X;Y;Z\" (in u,v,t) --domain umin,umax,vmin,vmax [--periodic u|v|uv]\n"
+         "  (an example: xargs -d '\\n' -a assets/examples/pulsing-blob.args dynamesh)\n"
          "scripted runs (exit when done):\n"
          "  --frames N        N frames, one step each (waits for every step)\n"
          "  --run-for SEC     run SEC seconds as a session would (adapting with --play), print\n"
@@ -56,6 +81,10 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   a.state = base;
   ViewerState& s = a.state;
   bool epsilon_given = false, threshold_given = false;
+  // What the command line says about the scene, put over the saved settings at the end
+  // (whatever the order of --scene and these options).
+  ParameterOverrides parameters;
+  TextOptions text;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& opt = args[i];
     const auto value = [&]() -> const std::string& {
@@ -65,18 +94,11 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     if (opt == "--help" || opt == "-h") {
       a.help = true;
     } else if (opt == "--scene") {
-      const std::string& name = value();
-      if (name != s.controls.scene) {  // the saved parameters belong to the saved scene
-        s.controls.scene_parameters.clear();
-        s.controls.scene_text.clear();
-      }
-      s.controls.scene = name;
+      s.controls.scene = value();
     } else if (opt == "--param") {
-      s.controls.scene_parameters.push_back(parse_parameter_override(value()));
-    } else if (opt == "--volume") {
-      const std::string& file = value();
-      std::erase_if(s.controls.scene_text, [](const auto& kv) { return kv.first == "volume"; });
-      s.controls.scene_text.emplace_back("volume", file);
+      parameters.push_back(parse_parameter_override(value()));
+    } else if (const char* key = text_option_key(opt, args, i)) {
+      text.emplace_back(key, value());
     } else if (opt == "--t0") {
       s.t0 = s.time = to_number(opt, value());
     } else if (opt == "--t1") {
@@ -133,6 +155,16 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       throw std::invalid_argument("unknown option '" + opt + "' (dynamesh --help lists them)");
     }
   }
+  // The saved parameters and text options belong to the saved scene. Text options given here
+  // describe the surface whole: saved ones (another formula, another volume) would only
+  // contradict them.
+  if (s.controls.scene != base.controls.scene) {
+    s.controls.scene_parameters.clear();
+    s.controls.scene_text.clear();
+  }
+  s.controls.scene_parameters.insert(s.controls.scene_parameters.end(), parameters.begin(),
+                                     parameters.end());
+  if (!text.empty()) s.controls.scene_text = text;
   // As dynamesh-cli run: eps defaults to T/4.
   if (threshold_given && !epsilon_given) s.controls.epsilon = 0.25 * s.controls.threshold;
   const SimulationControls& c = s.controls;
@@ -152,7 +184,8 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   if (a.frames >= 0 && a.run_for >= 0)
     throw std::invalid_argument("--frames and --run-for exclude each other");
   if (!a.scripted() && (!a.screenshot.empty() || !a.record.empty() || !a.frame_log.empty()))
-    throw std::invalid_argument("--screenshot, --record and --frame-log need --frames or --run-for");
+    throw std::invalid_argument(
+        "--screenshot, --record and --frame-log need --frames or --run-for");
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
   s.time = std::clamp(s.time, s.t0, s.t1);

@@ -1,6 +1,8 @@
 // The viewer's command line: `dynamesh [--scene NAME] [the CLI's simulation options]
 // [--width W --height H] [--state FILE | --fresh] [--play]`, plus scripted runs for tests and
-// measurements (`--frames N`, `--run-for SECONDS`, `--screenshot`, `--record`).
+// measurements (`--frames N`, `--run-for SECONDS`, `--screenshot`, `--record`). The CLI's
+// scene text options (--volume, and --implicit, --bounds, ... of the expr scene) are read as
+// dynamesh-cli run reads them, so an assets/examples/*.args file serves both.
 #pragma once
 
 #include <string>
@@ -29,9 +31,10 @@ struct ViewerArgs {
   // settings_path(); scripted runs use none unless --state is given.
   std::string state_file;
   bool fresh = false;  // start from the defaults, not the saved settings
-  // The scene the state's camera was framed for (settings restored): the view is kept for
-  // it. Empty: frame the first mesh.
+  // The scene the state's camera was framed for (settings restored), and its text options
+  // (a formula): the view is kept for them. Empty: frame the first mesh.
   std::string camera_scene;
+  TextOptions camera_text;
   bool help = false;
 
   bool scripted() const { return frames >= 0 || run_for >= 0.0; }

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "app/render/colorbar_overlay.h"
+#include "app/viewer/formula_panel.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -17,7 +18,7 @@ ImU32 to_imgui(const glm::vec3& c) {
                   static_cast<int>(c.b * 255), 255);
 }
 
-const ImVec4 kErrorColor(1.0f, 0.42f, 0.35f, 1.0f);
+const ImVec4 kErrorColor(kPanelErrorRgb[0], kPanelErrorRgb[1], kPanelErrorRgb[2], 1.0f);
 
 // Committed on Enter only: a half-typed number (0.0 on the way to 0.0005) must not reach the
 // adapter.
@@ -81,6 +82,11 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
       a.controls_changed |= ImGui::IsItemDeactivatedAfterEdit();
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
     }
+  }
+  if (c.scene == "expr") {
+    // Its own section, which shows the errors under the formula.
+    a.controls_changed |= formula_section(s, info);
+    return;
   }
   for (std::size_t i = 0; i < c.scene_text.size(); ++i)
     a.controls_changed |= text_option(c, std::string(c.scene_text[i].first));
@@ -222,9 +228,11 @@ void statistics_section(const ViewerState& state, const PanelInfo& info) {
   // Time per phase, as bars sharing the step's total.
   const PhaseSeconds& p = s.seconds;
   ImGui::Text("step %.1f ms   %.0f fps", 1e3 * p.total, static_cast<double>(info.fps));
-  const std::pair<const char*, double> phases[] = {
-      {"project", p.project}, {"smooth", p.smooth}, {"sample", p.sample},
-      {"weld", p.weld},       {"split", p.split}};
+  const std::pair<const char*, double> phases[] = {{"project", p.project},
+                                                   {"smooth", p.smooth},
+                                                   {"sample", p.sample},
+                                                   {"weld", p.weld},
+                                                   {"split", p.split}};
   for (const auto& [name, seconds] : phases) {
     char overlay[48];
     std::snprintf(overlay, sizeof overlay, "%s %.1f ms", name, 1e3 * seconds);
@@ -256,8 +264,9 @@ void output_section(PanelActions& a, const PanelInfo& info) {
   }
   a.save_settings |= ImGui::Button("Save settings");
   if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("%s", info.settings.empty() ? "no settings file (scripted run)"
-                                                  : ("saved at exit too, in " + info.settings).c_str());
+    ImGui::SetTooltip("%s", info.settings.empty()
+                                ? "no settings file (scripted run)"
+                                : ("saved at exit too, in " + info.settings).c_str());
   }
   ImGui::SameLine();
   a.reset_settings |= ImGui::Button("Reset to defaults");

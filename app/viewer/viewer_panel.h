@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/render/color_scale.h"
+#include "app/viewer/formula_examples.h"
 #include "app/viewer/stats_history.h"
 #include "app/viewer/viewer_state.h"
 #include "core/surface/scene_registry.h"
@@ -26,11 +27,13 @@ struct PanelInfo {
   // The parameters of the scene the adapter runs on (values and ranges), and its name.
   std::string running_scene;
   std::vector<SurfaceParameter> running_parameters;
+  TextOptions running_text;  // its text options: the formula of the mesh on screen
+  const std::vector<FormulaExample>* examples = nullptr;  // the formula panel's library
   const StatsHistory* history = nullptr;
-  StepStats last;          // the adapter's last step
-  std::string error;       // the last request failed: shown in red
-  std::string status;      // last message (screenshot written...)
-  std::string settings;    // the settings file (empty: none)
+  StepStats last;        // the adapter's last step
+  std::string error;     // the last request failed: shown in red
+  std::string status;    // last message (screenshot written...)
+  std::string settings;  // the settings file (empty: none)
   bool busy = false;
   int recorded_frames = -1;  // >= 0 while recording
   float fps = 0.0f;
@@ -39,6 +42,8 @@ struct PanelInfo {
 };
 
 constexpr float kPanelWidth = 340.0f;
+// Errors and warnings in the panel (red, readable on ImGui's dark theme).
+constexpr float kPanelErrorRgb[3] = {1.0f, 0.42f, 0.35f};
 // The colour bar's card at the right edge: the 3D view is laid out beside it, not under it.
 constexpr float kColorbarWidth = 130.0f;
 

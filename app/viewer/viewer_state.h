@@ -9,6 +9,7 @@
 
 #include "app/render/camera.h"
 #include "app/render/render_style.h"
+#include "app/viewer/formula_draft.h"
 #include "app/viewer/simulation.h"
 
 namespace dynamesh {
@@ -22,6 +23,9 @@ struct ViewerState {
   }
 
   SimulationControls controls;
+  // The formula panel's fields (scene expr) as typed; what runs is controls.scene_text.
+  // Not saved: filled again from the saved scene_text at start (formula_draft.h).
+  FormulaDraft formula;
   // Playback: steps evenly spaced from t0 to t1; `time` is the one shown.
   double t0 = 0.0, t1 = 1.0;
   int steps = 100;
@@ -47,7 +51,8 @@ struct ViewerState {
 // else ~/.config/dynamesh/viewer.conf; empty when neither variable is set.
 std::string settings_path();
 
-// Writes the state (creating its directory) as "key = value" lines (atomically). Throws std::runtime_error on failure.
+// Writes the state (creating its directory) as "key = value" lines (atomically). Throws
+// std::runtime_error on failure.
 void save_viewer_state(const ViewerState& state, const std::string& path);
 // Reads a file written by save_viewer_state over `state`: unknown keys are ignored (older or
 // newer versions), malformed values are skipped. Returns false when the file cannot be read.

@@ -5,6 +5,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -91,24 +92,24 @@ std::string viewer(const std::string& options, const std::string& env = "") {
          "' " + options;
 }
 
-
 TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   ASSERT_TRUE(on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
   const fs::path dir = test::render_scratch("viewer_record");
   const fs::path video = dir / "run.mp4";
-  const Outcome r = run(viewer("--scene sinc --frames 7 --width 640 --height 480 --record '" +
-                           video.string() + "'"),
-                    dir / "log.txt");
+  const Outcome r = run(
+      viewer("--scene sinc --frames 7 --width 640 --height 480 --record '" + video.string() + "'"),
+      dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("recorded 7 frames"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(video)) << r.output;
   EXPECT_FALSE(fs::exists(video.string() + ".partial"));
   // An independent reader: ffprobe decodes the file and counts.
-  const Outcome probe = run("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                        "stream=width,height,nb_read_frames -of csv=p=0 '" +
-                            video.string() + "'",
-                        dir / "probe.txt");
+  const Outcome probe =
+      run("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+          "stream=width,height,nb_read_frames -of csv=p=0 '" +
+              video.string() + "'",
+          dir / "probe.txt");
   ASSERT_EQ(probe.status, 0) << probe.output;
   EXPECT_EQ(probe.output.substr(0, probe.output.find_last_not_of("\n") + 1), "640,480,7");
 }
@@ -118,9 +119,9 @@ TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
   const fs::path dir = test::render_scratch("viewer_record_png");
   // A PATH with no ffmpeg on it (the viewer needs nothing else from PATH).
   const Outcome r = run(viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
-                               (dir / "run.mp4").string() + "'",
-                           "env PATH=/nonexistent"),
-                    dir / "log.txt");
+                                   (dir / "run.mp4").string() + "'",
+                               "env PATH=/nonexistent"),
+                        dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir / "run.mp4"));
   const fs::path frames = dir / "run_frames";
@@ -144,10 +145,10 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
   const fs::path state = dir / "config" / "viewer.conf";
   const std::string shot = " --screenshot '" + (dir / "shot.png").string() + "'";
   const Outcome first = run(viewer("--state '" + state.string() +
-                               "' --scene sinc --param beta=10 --threshold 0.03 --frames 1 "
-                               "--width 700 --height 500" +
-                               shot),
-                        dir / "first.txt");
+                                   "' --scene sinc --param beta=10 --threshold 0.03 --frames 1 "
+                                   "--width 700 --height 500" +
+                                   shot),
+                            dir / "first.txt");
   ASSERT_EQ(first.status, 0) << first.output;
   std::ifstream in(state);
   const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -156,8 +157,8 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
   EXPECT_NE(saved.find("window_width = 700"), std::string::npos) << saved;
 
   // The second run names no scene: it continues with the saved one and its window size.
-  const Outcome second = run(viewer("--state '" + state.string() + "' --frames 1" + shot),
-                         dir / "second.txt");
+  const Outcome second =
+      run(viewer("--state '" + state.string() + "' --frames 1" + shot), dir / "second.txt");
   ASSERT_EQ(second.status, 0) << second.output;
   EXPECT_NE(second.output.find("scene sinc"), std::string::npos) << second.output;
   int w = 0, h = 0, n = 0;
@@ -170,20 +171,72 @@ TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_bad_parameter");
   const Outcome r = run(viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
-                           (dir / "shot.png").string() + "'"),
-                    dir / "log.txt");
+                               (dir / "shot.png").string() + "'"),
+                        dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("error shown: sinc: no parameter 'no_such'"), std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(dir / "shot.png"));
 }
 
+// Pixels of the panel's error red (antialiased text) in the panel's top part, where the
+// scene section and its formula fields are.
+int red_text_pixels(const fs::path& png) {
+  int w = 0, h = 0, n = 0;
+  stbi_uc* pixels = stbi_load(png.c_str(), &w, &h, &n, 3);
+  if (pixels == nullptr) return -1;
+  int red = 0;
+  for (int y = 0; y < std::min(h, 320); ++y) {
+    for (int x = 0; x < std::min(w, 330); ++x) {
+      const stbi_uc* p = pixels + 3 * (y * w + x);
+      red += p[0] > 180 && p[1] > 60 && p[1] < 140 && p[2] > 40 && p[2] < 120 && p[0] > p[1] + 80;
+    }
+  }
+  stbi_image_free(pixels);
+  return red;
+}
+
+TEST(ViewerUnderXvfb, TypedFormulaRunsWithItsPanel) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_expr");
+  const Outcome r = run(viewer("--scene expr --implicit 'x^2 + y^2/(1+0.5*sin(2*pi*t)) + z^2 - 1' "
+                               "--bounds -2,-2,-2,2,2,2 --threshold 0.02 --frames 4 --width 800 "
+                               "--height 600 --screenshot '" +
+                               (dir / "shot.png").string() + "'"),
+                        dir / "log.txt");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("scene expr, 3 steps"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("error shown"), std::string::npos) << r.output;
+  int w = 0, h = 0, n = 0;
+  stbi_uc* pixels = stbi_load((dir / "shot.png").c_str(), &w, &h, &n, 3);
+  ASSERT_NE(pixels, nullptr);
+  const stbi_uc* centre = pixels + 3 * ((h / 2) * w + 340 + (w - 340 - 130) / 2);
+  EXPECT_LT(centre[0] + centre[1] + centre[2], 3 * 220) << "no mesh in the middle of the view";
+  stbi_image_free(pixels);
+  EXPECT_EQ(red_text_pixels(dir / "shot.png"), 0) << "an error is shown";
+}
+
+TEST(ViewerUnderXvfb, BrokenFormulaShowsItsErrorInRedInsteadOfCrashing) {
+  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  const fs::path dir = test::render_scratch("viewer_expr_broken");
+  for (const char* formula : {"sqrt(x^2+y^2+z^2 - 1", "x^2 + y^2 + z^2 + 1"}) {
+    const Outcome r = run(viewer(std::string("--scene expr --implicit '") + formula +
+                                 "' --bounds -2,-2,-2,2,2,2 --frames 2 --width 800 --height 600 "
+                                 "--screenshot '" +
+                                 (dir / "shot.png").string() + "'"),
+                          dir / "log.txt");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("error shown: implicit formula"), std::string::npos) << r.output;
+    EXPECT_GT(red_text_pixels(dir / "shot.png"), 100) << formula << ": no red message in the panel";
+  }
+}
+
 TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_uploads");
   // Turning the view for a second without playing: many frames, one upload.
-  const Outcome still = run(viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300"),
-                        dir / "still.txt");
+  const Outcome still =
+      run(viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300"), dir / "still.txt");
   ASSERT_EQ(still.status, 0) << still.output;
   EXPECT_NE(still.output.find("uploads: 1 full, 0 positions only, 1 colour"), std::string::npos)
       << still.output;
@@ -193,17 +246,17 @@ TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
   EXPECT_GT(frames, 3u) << still.output;
 
   // Playing: one geometry upload per step shown.
-  const Outcome playing = run(viewer("--scene sinc --play --run-for 2 --width 400 --height 300"),
-                          dir / "playing.txt");
+  const Outcome playing =
+      run(viewer("--scene sinc --play --run-for 2 --width 400 --height 300"), dir / "playing.txt");
   ASSERT_EQ(playing.status, 0) << playing.output;
   int full = 0, positions = 0, colour = 0;
   unsigned steps = 0;
   const auto up = playing.output.find("uploads:");
   ASSERT_NE(up, std::string::npos) << playing.output;
-  ASSERT_EQ(std::sscanf(playing.output.c_str() + up,
-                        "uploads: %d full, %d positions only, %d colour", &full, &positions,
-                        &colour),
-            3);
+  ASSERT_EQ(
+      std::sscanf(playing.output.c_str() + up, "uploads: %d full, %d positions only, %d colour",
+                  &full, &positions, &colour),
+      3);
   const auto timing = playing.output.find("new steps");
   ASSERT_NE(timing, std::string::npos);
   const auto comma = playing.output.rfind(", ", timing);
