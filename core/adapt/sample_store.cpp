@@ -31,6 +31,12 @@ double face_area(const Mesh48& mesh, Face f) {
 
 }  // namespace
 
+void SampleStore::prefetch_face(const Mesh48& mesh, Face f) const {
+  if (!mesh.is_alive(f)) return;
+  for (Vertex v : mesh.vertices(f)) __builtin_prefetch(mesh.position(v).data());
+  __builtin_prefetch(samples_.data() + face_start_[f.idx]);
+}
+
 SampleStore::SampleStore(double density, std::uint64_t seed) : density_(density), seed_(seed) {}
 
 void SampleStore::grow_faces(std::size_t capacity) {
@@ -153,6 +159,10 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
     unresolved.assign(pending.size(), 0);
 #pragma omp parallel for schedule(dynamic, 256) if (n > kParallelMin)
     for (std::int64_t i = 0; i < n; ++i) {
+      // A face's vertices lie anywhere in memory: fetch those of a face a few ahead while
+      // this one is measured, and its samples.
+      if (i + kPrefetchAhead < n)
+        prefetch_face(mesh, pending[static_cast<std::size_t>(i + kPrefetchAhead)]);
       const Face f = pending[static_cast<std::size_t>(i)];
       if (mesh.is_alive(f))
         unresolved[static_cast<std::size_t>(i)] = !evaluate_face(mesh, probe, f);

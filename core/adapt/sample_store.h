@@ -94,6 +94,8 @@ class SampleStore final : public MeshListener {
   Sample* allocate(std::uint32_t f, std::uint32_t n);
   void compact_if_wasteful();
   void draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count = 0);
+  static constexpr std::int64_t kPrefetchAhead = 4;
+  void prefetch_face(const Mesh48& mesh, Face f) const;
   // Measures one face; returns whether its error estimate is resolved.
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
   std::uint32_t target_count(const Mesh48& mesh, Face f) const;

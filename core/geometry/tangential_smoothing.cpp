@@ -24,7 +24,10 @@ struct SmoothingWorkspace::Buffers {
   std::vector<Vec3> position;
   std::vector<Vec2> uv;
   std::vector<std::uint8_t> moved;
-  std::vector<std::uint8_t> bad;  // per face slot: fails the guards
+  std::vector<Vec3> centroid;          // of each vertex's one-ring
+  std::vector<double> ring_weight;     // the centroid's total weight while summing
+  std::vector<std::uint8_t> boundary;  // per vertex: on an open boundary
+  std::vector<std::uint8_t> bad;       // per face slot: fails the guards
   std::vector<Face> check, next_check;
 };
 
@@ -54,29 +57,39 @@ double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
   return norms > 0 ? u.dot(v) / norms : 1.0;
 }
 
-// Centroid of the one-ring, without allocating. Uniform weights are the paper's; inverse
-// edge-length weights (Fujiwara's scale-invariant Laplacian) make a graded ring a fixed
-// point — with uniform weights a vertex at a level transition of the 4-8 mesh is pulled
-// towards the coarse side, fine regions lose resolution and are split again, and the mesh
-// grows cycle after cycle of a periodic deformation.
-Vec3 ring_centroid(const Mesh48& mesh, Vertex v, bool scale_invariant) {
-  const Vec3& p = mesh.position(v);
-  Vec3 sum = Vec3::Zero();
-  double weight = 0;
-  auto add = [&](Vertex n) {
-    const Vec3& q = mesh.position(n);
-    const double len = (q - p).norm();
-    const double w = scale_invariant ? (len > 0 ? 1.0 / len : 0.0) : 1.0;
-    sum += w * q;
-    weight += w;
-  };
-  Corner last{};
-  mesh.for_each_corner_around(v, [&](Corner c) {
-    add(mesh.vertex(c.face, (c.local + 1) % 3));
-    last = c;
-  });
-  if (mesh.is_boundary(v)) add(mesh.vertex(last.face, (last.local + 2) % 3));
-  return weight > 0 ? Vec3(sum / weight) : p;
+// Centroids of every vertex's one-ring, and which vertices lie on the boundary, in one pass
+// over the faces that meets each edge once (from its lower-numbered halfedge): walking each
+// vertex's ring instead chases faces scattered through memory. Uniform weights are the
+// paper's; inverse edge-length weights (Fujiwara's scale-invariant Laplacian) make a graded
+// ring a fixed point — with uniform weights a vertex at a level transition of the 4-8 mesh
+// is pulled towards the coarse side, fine regions lose resolution and are split again, and
+// the mesh grows cycle after cycle of a periodic deformation.
+void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
+  const std::size_t nv = mesh.vertex_capacity();
+  w.centroid.assign(nv, Vec3::Zero());
+  w.ring_weight.assign(nv, 0.0);
+  w.boundary.assign(nv, 0);
+  const auto nf = static_cast<std::uint32_t>(mesh.face_capacity());
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (!mesh.is_alive(Face(f))) continue;
+    for (int e = 0; e < 3; ++e) {
+      const Halfedge h(Face(f), e);
+      const Halfedge twin = mesh.twin(h);
+      if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
+      const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+      if (!twin.is_valid()) w.boundary[a.idx] = w.boundary[b.idx] = 1;
+      const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+      const double length = (pa - pb).norm();
+      const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+      w.centroid[a.idx] += weight * pb;
+      w.ring_weight[a.idx] += weight;
+      w.centroid[b.idx] += weight * pa;
+      w.ring_weight[b.idx] += weight;
+    }
+  }
+  for (std::size_t i = 0; i < nv; ++i)
+    w.centroid[i] = w.ring_weight[i] > 0 ? Vec3(w.centroid[i] / w.ring_weight[i])
+                                         : mesh.position(Vertex(static_cast<std::uint32_t>(i)));
 }
 
 PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v) {
@@ -112,9 +125,10 @@ void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingO
 }
 
 // Equation 1's tangential move of one vertex (towards its ring centroid).
-Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const SmoothingOptions& o) {
+Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const Vec3& centroid,
+                    const SmoothingOptions& o) {
   const double k = o.k;
-  const Vec3 vec = mesh.position(v) - ring_centroid(mesh, v, o.scale_invariant_weights);
+  const Vec3 vec = mesh.position(v) - centroid;
   const Vec3 d = vec - vec.dot(f.k.normal) * f.k.normal;
   return -(f.k.dir1.dot(d) * std::exp(-k * f.l1) * f.k.dir1 +
            f.k.dir2.dot(d) * std::exp(-k * f.l2) * f.k.dir2);
@@ -146,8 +160,8 @@ bool parametric_candidate(const ParametricSurface& s, const Mesh48& mesh, Vertex
 }
 
 bool implicit_candidate(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
-                        Vec3& position, std::size_t& failures) {
-  if (mesh.is_boundary(v)) return false;
+                        bool boundary, Vec3& position, std::size_t& failures) {
+  if (boundary) return false;
   const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
   if (!r.converged) {
     ++failures;
@@ -215,6 +229,7 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   w.uv = mesh.uvs();
   w.moved.assign(cap, 0);
   compute_frames(mesh, surface, o, w);
+  compute_ring_centroids(mesh, o.scale_invariant_weights, w);
   const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
   const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
   const auto n = static_cast<std::int64_t>(cap);
@@ -224,9 +239,10 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
     const Vertex v(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
     if (!mesh.is_alive(v)) continue;
-    const Vec3 move = equation1_move(mesh, v, w.frame[k], o);
-    const bool ok = par ? parametric_candidate(*par, mesh, v, move, w.uv[k], w.position[k])
-                        : implicit_candidate(*imp, mesh, v, move, w.position[k], failures);
+    const Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o);
+    const bool ok =
+        par ? parametric_candidate(*par, mesh, v, move, w.uv[k], w.position[k])
+            : implicit_candidate(*imp, mesh, v, move, w.boundary[k], w.position[k], failures);
     w.moved[k] = ok ? 1 : 0;
   }
   SmoothingResult r;
