@@ -59,7 +59,7 @@ double scalar_maximum(double a, double b, double c) {
 
 void QuadraticErrorModel::add(const Vec3& b, const Vec3& residual) {
   const Vec3 w = edge_weights(b);
-  normal_.noalias() += w * w.transpose();
+  add_normal(w);
   moment_.noalias() += w * residual.transpose();
   sum_squares_ += residual.squaredNorm();
   ++count_;
@@ -74,9 +74,9 @@ QuadraticErrorModel::Result QuadraticErrorModel::evaluate() const {
   if (sum_squares_ == 0.0) return {0.0, true};
   // The normal matrix is symmetric 3 x 3: its explicit inverse is cheaper than a
   // factorisation and gives the exact condition number.
-  const Eigen::Matrix3d inverse = normal_.inverse();
-  if (!inverse.allFinite() || 1.0 / (norm1(normal_) * norm1(inverse)) < kMinRcond)
-    return unresolved;
+  const Eigen::Matrix3d normal = normal_.selfadjointView<Eigen::Upper>();
+  const Eigen::Matrix3d inverse = normal.inverse();
+  if (!inverse.allFinite() || 1.0 / (norm1(normal) * norm1(inverse)) < kMinRcond) return unresolved;
   const Eigen::Matrix3d coefficients = inverse * moment_;  // row e: edge e's vector
   // Least squares: the explained part of sum |r|^2 is trace(C^T M).
   const double explained = (coefficients.transpose() * moment_).trace();

@@ -27,7 +27,7 @@ class QuadraticErrorModel {
   // A scalar residual (an implicit surface's signed distance): add(b, (r, 0, 0)), cheaper.
   void add(const Vec3& b, double residual) {
     const Vec3 w(b[1] * b[2], b[2] * b[0], b[0] * b[1]);
-    normal_.noalias() += w * w.transpose();
+    add_normal(w);
     moment_.col(0) += residual * w;
     sum_squares_ += residual * residual;
     ++count_;
@@ -50,7 +50,13 @@ class QuadraticErrorModel {
   Result evaluate() const;
 
  private:
-  Eigen::Matrix3d normal_ = Eigen::Matrix3d::Zero();  // sum of w w^T, w = (b1b2, b2b0, b0b1)
+  // The upper triangle of the symmetric sum of w w^T (this runs for every sample).
+  void add_normal(const Vec3& w) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) normal_(i, j) += w[i] * w[j];
+  }
+  // Sum of w w^T, w = (b1b2, b2b0, b0b1); only the upper triangle is accumulated.
+  Eigen::Matrix3d normal_ = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d moment_ = Eigen::Matrix3d::Zero();  // sum of w r^T
   double sum_squares_ = 0.0;                          // sum of |r|^2
   int count_ = 0;
