@@ -1,7 +1,10 @@
 // Typed formulas (issue 8) against the compiled scenes they equal: the same surface, evaluated
-// through muparser (per-thread parsers, central differences) or through C++ closed forms.
+// through its formula's tape (formula_tape.h: values and exact derivatives on jets) or
+// through C++ closed forms.
 // Goal: a typed formula costs at most 5x its compiled equivalent for what sampling costs
-// (implicit: value + gradient; parametric: position), reported as the ratio of the pairs.
+// (implicit: value + gradient; parametric: position) and for the curvature the adapter
+// needs per vertex (implicit: Hessian; parametric: derivatives), reported as the ratio of the
+// pairs.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -47,6 +50,22 @@ void sphere_value_gradient(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kPoints);
 }
 
+// Curvature needs the Hessian at every vertex.
+void sphere_hessian(benchmark::State& state) {
+  const auto s = scene(state.range(0) != 0, true);
+  const auto& f = dynamic_cast<const ImplicitSurface&>(*s);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(kPoints);
+  for (Vec3& p : points) p = Vec3(u(rng), u(rng), u(rng));
+  for (auto _ : state) {
+    double sum = 0;
+    for (const Vec3& p : points) sum += f.hessian(p)(0, 1);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * kPoints);
+}
+
 template <bool kDerivatives>
 void sinc_evaluation(benchmark::State& state) {
   const auto s = scene(state.range(0) != 0, false);
@@ -65,6 +84,7 @@ void sinc_evaluation(benchmark::State& state) {
 
 // Argument: 0 = compiled scene, 1 = typed formula.
 BENCHMARK(sphere_value_gradient)->Arg(0)->Arg(1);
+BENCHMARK(sphere_hessian)->Arg(0)->Arg(1);
 BENCHMARK(sinc_evaluation<false>)->Name("sinc_position")->Arg(0)->Arg(1);
 BENCHMARK(sinc_evaluation<true>)->Name("sinc_derivatives")->Arg(0)->Arg(1);
 

@@ -83,6 +83,24 @@ Expression::Expression(std::vector<std::string> formulas, std::vector<std::strin
     if (!joined_.empty()) joined_.push_back(',');
     joined_.append(f);
   }
+  // The tape is read off the bytecode of the joined formulas, with each variable's storage
+  // telling the translator which input a variable token reads.
+  Instance parsed;
+  define_names(parsed.parser, variables_, parsed.storage);
+  parsed.parser.SetExpr(joined_);
+  parsed.parser.Eval();
+  double* inputs[kMaxVariables];
+  for (std::size_t i = 0; i < variables_.size(); ++i) inputs[i] = &parsed.storage[i];
+  if (std::optional<FormulaTape> tape =
+          FormulaTape::translate(parsed.parser, std::span(inputs, variables_.size())))
+    tape_ = std::make_unique<const FormulaTape>(std::move(*tape));
+}
+
+std::optional<FormulaTape> Expression::tape_with(std::string_view variable, double value) const {
+  if (!tape_) return std::nullopt;
+  const auto it = std::find(variables_.begin(), variables_.end(), variable);
+  if (it == variables_.end()) return *tape_;
+  return tape_->bind(static_cast<int>(it - variables_.begin()), value);
 }
 
 Expression::~Expression() = default;
@@ -122,6 +140,13 @@ Expression::Instance& Expression::local_instance() const {
 }
 
 void Expression::evaluate(std::span<const double> values, std::span<double> out) const {
+  if (tape_ && tape_->outputs() <= FormulaTape::kLocalStack) {
+    ForwardJet<0, 0> results[FormulaTape::kLocalStack];
+    tape_->evaluate<0, 0>(values, results);
+    const std::size_t n = std::min(out.size(), static_cast<std::size_t>(tape_->outputs()));
+    for (std::size_t i = 0; i < n; ++i) out[i] = results[i].value;
+    return;
+  }
   Instance& in = local_instance();
   std::copy_n(values.begin(), std::min(values.size(), variables_.size()), in.storage);
   int n = 0;
@@ -130,6 +155,11 @@ void Expression::evaluate(std::span<const double> values, std::span<double> out)
 }
 
 double Expression::value(std::span<const double> values) const {
+  if (tape_) {
+    ForwardJet<0, 0> results[FormulaTape::kLocalStack];
+    tape_->evaluate<0, 0>(values, results);
+    return results[0].value;
+  }
   Instance& in = local_instance();
   std::copy_n(values.begin(), std::min(values.size(), variables_.size()), in.storage);
   if (formulas_.size() == 1) return in.parser.Eval();

@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "core/mesh/base_meshes.h"
-#include "core/surface/finite_differences.h"
 #include "core/surface/expression/formula_checks.h"
+#include "core/surface/finite_differences.h"
 
 namespace dynamesh {
 
@@ -17,7 +17,9 @@ constexpr int kBaseQuads = 8;  // base grid, as for the sinc scene
 
 HeightExpressionSurface::HeightExpressionSurface(const std::string& formula, const Vec2& domain_min,
                                                  const Vec2& domain_max)
-    : formula_(formula), f_({formula}, {"x", "z", "t"}, "height formula") {
+    : formula_(formula),
+      f_({formula}, {"x", "z", "t"}, "height formula"),
+      tape_(f_.tape_with("t", 0.0)) {
   if (!(domain_min.array() < domain_max.array()).all() || !(domain_max - domain_min).allFinite())
     throw std::invalid_argument(
         "--domain is empty or not finite: expected xmin < xmax, zmin < zmax");
@@ -45,15 +47,35 @@ void HeightExpressionSurface::set_time(double t) {
   const Box3 box = scan(t);  // throws before anything changes
   bounds_ = box;
   Surface::set_time(t);
+  tape_ = f_.tape_with("t", t);
 }
 
 Vec3 HeightExpressionSurface::position(const Vec2& uv) const {
   const double x[3] = {uv.x(), uv.y(), time()};
+  if (tape_) {
+    ForwardJet<0, 0> f[FormulaTape::kLocalStack];
+    tape_->evaluate<0, 0>(x, f);
+    return {uv.x(), f[0].value, uv.y()};
+  }
   return {uv.x(), f_.value(x), uv.y()};
 }
 
 ParametricDerivatives HeightExpressionSurface::derivatives(const Vec2& uv) const {
   const double t = time();
+  if (tape_) {
+    const double x[3] = {uv.x(), uv.y(), t};
+    ForwardJet<2, 2> jets[FormulaTape::kLocalStack];
+    tape_->evaluate<2, 2>(x, jets);
+    const ForwardJet<2, 2>& f = jets[0];
+    ParametricDerivatives d;
+    d.s = Vec3(uv.x(), f.value, uv.y());
+    d.su = Vec3(1.0, f.grad[0], 0.0);
+    d.sv = Vec3(0.0, f.grad[1], 1.0);
+    d.suu = Vec3(0.0, f.hessian(0, 0), 0.0);
+    d.suv = Vec3(0.0, f.hessian(0, 1), 0.0);
+    d.svv = Vec3(0.0, f.hessian(1, 1), 0.0);
+    return d;
+  }
   ParametricDerivatives d = parametric_differences(
       [&](const Vec2& q) {
         const double x[3] = {q.x(), q.y(), t};

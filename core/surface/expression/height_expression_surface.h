@@ -1,11 +1,14 @@
 // An open height field typed as a formula: y = f(x, z, t) over the domain [xmin, xmax] x
 // [zmin, zmax] (--height EXPR --domain ...), as a parametric surface with (u, v) = (x, z):
 // S(u, v) = (u, f(u, v, t), v), so the normal Su x Sv points to -y, as for the sinc scene, and
-// the grid base mesh (counter-clockwise in (u, v)) agrees with it. Derivatives are central
-// differences with steps relative to the domain; bounds() comes from a grid scan at each
-// set_time(), which also throws (before the time changes) where f is not finite.
+// the grid base mesh (counter-clockwise in (u, v)) agrees with it. Positions and derivatives
+// come from the formula's tape with t fixed at the surface's time, on jets (exact); without a
+// tape (Expression::differentiable()), from muparser and central differences with steps
+// relative to the domain. bounds() comes from a grid scan at each set_time(), which also
+// throws (before the time changes) where f is not finite.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/surface/expression/expression.h"
@@ -32,6 +35,7 @@ class HeightExpressionSurface final : public ParametricSurface {
 
   std::string formula_;
   Expression f_;
+  std::optional<FormulaTape> tape_;  // f_ at time(); empty when f_ is not differentiable
   ParameterDomain domain_;
   Box3 bounds_;
 };

@@ -2,7 +2,10 @@
 // user-given box (--implicit EXPR --bounds ...). The base mesh is either a box of quads placed
 // on the surface by rays from an interior point (sphere topology, for star-shaped surfaces) or
 // a user's mesh of the surface's topology (--base-mesh FILE, any genus) made 4-8 and projected.
-// Derivatives are central differences with steps relative to the box's diagonal.
+// Values and derivatives come from the formula's tape with t fixed at the surface's time
+// (rebuilt at every set_time(), so that terms in t alone are computed once per frame), on
+// jets: exact gradients and Hessians. A formula without a tape (Expression::differentiable())
+// uses muparser and central differences with steps relative to the box's diagonal.
 //
 // Guards (formula_checks.h): the formula is scanned over the box when built and at every
 // set_time(), which throws before the time changes, so the adapter keeps its last good mesh.
@@ -46,6 +49,7 @@ class ImplicitExpressionSurface final : public ImplicitSurface {
 
   std::string formula_;
   Expression f_;
+  std::optional<FormulaTape> tape_;  // f_ at time(); empty when f_ is not differentiable
   Box3 bounds_;
   std::string base_mesh_path_;
   std::optional<TriangleMesh> file_mesh_;

@@ -36,6 +36,7 @@ ParametricExpressionSurface::ParametricExpressionSurface(const std::string& form
                                                          const ParameterDomain& domain)
     : text_(formulas),
       xyz_(split_parametric_formulas(formulas), {"u", "v", "t"}, "parametric formula"),
+      tape_(xyz_.tape_with("t", 0.0)),
       domain_(domain) {
   if (!(domain_.min.array() < domain_.max.array()).all() ||
       !(domain_.max - domain_.min).allFinite())
@@ -60,14 +61,36 @@ void ParametricExpressionSurface::set_time(double t) {
   const Box3 box = scan(t);  // throws before anything changes
   bounds_ = box;
   Surface::set_time(t);
+  tape_ = xyz_.tape_with("t", t);
 }
 
 Vec3 ParametricExpressionSurface::position(const Vec2& uv) const {
+  if (tape_) {
+    const double in[3] = {uv.x(), uv.y(), time()};
+    ForwardJet<0, 0> s[FormulaTape::kLocalStack];
+    tape_->evaluate<0, 0>(in, s);
+    return {s[0].value, s[1].value, s[2].value};
+  }
   return evaluate(uv, time());
 }
 
 ParametricDerivatives ParametricExpressionSurface::derivatives(const Vec2& uv) const {
   const double t = time();
+  if (tape_) {
+    const double in[3] = {uv.x(), uv.y(), t};
+    ForwardJet<2, 2> s[FormulaTape::kLocalStack];
+    tape_->evaluate<2, 2>(in, s);
+    ParametricDerivatives d;
+    for (int k = 0; k < 3; ++k) {
+      d.s[k] = s[k].value;
+      d.su[k] = s[k].grad[0];
+      d.sv[k] = s[k].grad[1];
+      d.suu[k] = s[k].hessian(0, 0);
+      d.suv[k] = s[k].hessian(0, 1);
+      d.svv[k] = s[k].hessian(1, 1);
+    }
+    return d;
+  }
   return parametric_differences([&](const Vec2& q) { return evaluate(q, t); }, uv,
                                 domain_.max - domain_.min);
 }

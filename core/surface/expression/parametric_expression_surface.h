@@ -3,11 +3,14 @@
 // directions close up: the base mesh is a periodic grid (periodic_grid_mesh.h) whose seam
 // vertices are shared, so a cylinder (u periodic) has boundary only at its two ends and a
 // torus (u and v) none; the adapter interpolates (u, v) across the seam. Orientation follows
-// Su x Sv. Derivatives are central differences with steps relative to the domain; a grid scan
-// at construction and at every set_time() (which throws before the time changes) checks that
-// S is finite and closes up along periodic directions, and gives bounds().
+// Su x Sv. Positions and derivatives come from the formulas' tape with t fixed at the
+// surface's time, on jets (exact); without a tape (Expression::differentiable()), from
+// muparser and central differences with steps relative to the domain. A grid scan at
+// construction and at every set_time() (which throws before the time changes) checks that S
+// is finite and closes up along periodic directions, and gives bounds().
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/surface/expression/expression.h"
@@ -35,6 +38,7 @@ class ParametricExpressionSurface final : public ParametricSurface {
 
   std::string text_;
   Expression xyz_;
+  std::optional<FormulaTape> tape_;  // xyz_ at time(); empty when xyz_ is not differentiable
   ParameterDomain domain_;
   Box3 bounds_;
 };
