@@ -136,6 +136,7 @@ const StepStats& Adapter::initialize() {
 
 const StepStats& Adapter::step(double t) {
   Stopwatch clock;
+  if (options_.geometric && probe_.follows_material()) record_rest_points();
   surface_.set_time(t);
   stats_ = StepStats{};
   stats_.step = ++step_;
@@ -167,13 +168,28 @@ bool Adapter::surface_changed() {
   return changed;
 }
 
+void Adapter::record_rest_points() {
+  const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+  rest_points_.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    if (mesh_.is_alive(v)) rest_points_[static_cast<std::size_t>(i)] = probe_.rest_point(mesh_, v);
+  }
+}
+
 void Adapter::normal_correction() {
   const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+  // Surfaces with a rest map: each vertex first goes where its material point went (recorded
+  // before the time changed), so the projection below only removes rounding and drift.
+  const bool carry = probe_.follows_material() && rest_points_.size() >= mesh_.vertex_capacity();
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
-    if (mesh_.is_alive(v) && !probe_.project_vertex(mesh_, v)) ++failures;
+    if (!mesh_.is_alive(v)) continue;
+    if (carry) probe_.carry_vertex(mesh_, v, rest_points_[static_cast<std::size_t>(i)]);
+    if (!probe_.project_vertex(mesh_, v)) ++failures;
   }
   tracker_->projection_failures += failures;
 }

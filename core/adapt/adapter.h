@@ -78,6 +78,7 @@ class Adapter {
   bool split_refused(Face f) const;
   bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
+  void record_rest_points();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 
@@ -95,6 +96,9 @@ class Adapter {
   std::vector<double> last_parameters_;
   // Positions at the start of the current step (temporal coherence); reused step to step.
   std::vector<Vec3> start_positions_;
+  // Rest-space points of the vertices before the surface's time changed (surfaces with a
+  // rest map: SurfaceProbe::follows_material); reused step to step.
+  std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
 };
 

@@ -19,6 +19,16 @@ class SurfaceProbe {
   // position). Returns false when an implicit projection did not converge (v is left at the
   // last iterate, which is still closer than where it started).
   bool project_vertex(Mesh48& mesh, Vertex v) const;
+  // Whether vertices are carried through the surface's rest space between steps
+  // (ImplicitSurface::has_rest_map); then rest_point() before the surface's time changes and
+  // carry_vertex() after it move a vertex with the material, before project_vertex().
+  bool follows_material() const { return implicit_ != nullptr && implicit_->has_rest_map(); }
+  Vec3 rest_point(const Mesh48& mesh, Vertex v) const {
+    return implicit_->to_rest(mesh.position(v));
+  }
+  void carry_vertex(Mesh48& mesh, Vertex v, const Vec3& rest) const {
+    mesh.position(v) = implicit_->from_rest(rest);
+  }
   // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
   // periodic seam); call before project_vertex.
   void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;

@@ -120,6 +120,16 @@ class ImplicitSurface : public Surface {
 
   // Principal curvatures from the gradient and Hessian (Goldman 2005), normal = grad/|grad|.
   PrincipalCurvatures curvatures(const Vec3& p) const;
+
+  // Material transport, for surfaces that are a rest shape under a known deformation: the
+  // rest-space point of a world point at the current time, and back. The adapter carries its
+  // vertices through rest space from one step to the next so that they follow the material
+  // (with correction along the normal only, a rotating cap slides under its vertices, and
+  // the mesh must refine anew behind every moving feature). Without a map, vertices are
+  // corrected along the normal only.
+  virtual bool has_rest_map() const { return false; }
+  virtual Vec3 to_rest(const Vec3& p) const { return p; }
+  virtual Vec3 from_rest(const Vec3& q) const { return q; }
 };
 
 }  // namespace dynamesh

@@ -74,11 +74,10 @@ void expect_error_bound(const std::string& scene, const test::AnimationFigures& 
 
 // Where the deformation is not a similarity, smoothing (uniform centroid) pays for itself:
 // the worst and the mean aspect ratio and the smallest angle over the whole animation are
-// better. Measured (on / off): capsule-bend worst 5.66 / 18.9, mean 1.433 / 1.593, min angle
-// 12.7 / 6.8 deg; sinc 5.30 / 5.89, 1.238 / 1.333, 14.7 / 14.2 deg (the tightest margin);
-// twist 4.68 / 14.6, 1.251 / 1.431, 16.6 / 9.8 deg.
+// better. Measured (on / off): sinc worst 3.57 / 5.89, mean 1.239 / 1.334, min angle 16.4 /
+// 14.2 deg; twist 4.63 / 9.32, 1.251 / 1.428, 16.7 / 9.8 deg.
 TEST(Smoothing, ImprovesQualityOnDeformingScenes) {
-  for (const char* scene : {"capsule-bend", "sinc", "twist"}) {
+  for (const char* scene : {"sinc", "twist"}) {
     const OnOff r = compare(scene);
     EXPECT_LT(r.on.worst_aspect, r.off.worst_aspect) << scene;
     EXPECT_LT(r.on.mean_aspect, r.off.mean_aspect) << scene;
@@ -86,6 +85,20 @@ TEST(Smoothing, ImprovesQualityOnDeformingScenes) {
     expect_error_bound(scene, r.on);
     EXPECT_TRUE(r.off.invariants_ok) << scene;
   }
+}
+
+// capsule-bend's vertices follow the material (CapsuleBendScene::has_rest_map), and the bend
+// is nearly isometric, so without smoothing its triangles keep their shape (a worst aspect
+// ratio of 4.9 where normal-only correction reached 18.9). Smoothing still improves the worst
+// and the mean aspect ratio (measured 4.47 / 4.86 and 1.517 / 1.625) but trades a little of
+// the smallest angle for them (13.1 vs 15.9 deg): that is held to a stated floor, 11 deg.
+TEST(Smoothing, ImprovesAspectOnTheMaterialFollowingBend) {
+  const OnOff r = compare("capsule-bend");
+  EXPECT_LT(r.on.worst_aspect, r.off.worst_aspect);
+  EXPECT_LT(r.on.mean_aspect, r.off.mean_aspect);
+  EXPECT_GE(r.on.min_angle, 11.0);
+  expect_error_bound("capsule-bend", r.on);
+  EXPECT_TRUE(r.off.invariants_ok);
 }
 
 // The sphere's deformation is a similarity (R(t) scales it about its centre): without
