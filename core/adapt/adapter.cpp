@@ -215,8 +215,7 @@ double Adapter::split_urgency(Face f, bool initial) const {
   return urgency;
 }
 
-double Adapter::weld_ceiling(const DiamondChange& plan) const {
-  const double current = star_error(plan);
+double Adapter::weld_ceiling(const DiamondChange& plan, double current) const {
   double ceiling = std::numeric_limits<double>::infinity();
   for (const auto& c : criteria_)
     if (c->applies_to(mesh_, plan)) ceiling = std::min(ceiling, c->weld_error_ceiling(current));
@@ -230,8 +229,8 @@ double Adapter::star_error(const DiamondChange& plan) const {
   return e;
 }
 
-bool Adapter::weld_allowed(const DiamondChange& plan, double error) const {
-  const WeldQuery q{mesh_, plan, error, star_error(plan)};
+bool Adapter::weld_allowed(const DiamondChange& plan, double error, double current) const {
+  const WeldQuery q{mesh_, plan, error, current};
   for (const auto& c : criteria_)
     if (c->applies_to(mesh_, plan) && !c->allows_weld(q)) return false;
   return true;
@@ -268,8 +267,12 @@ void Adapter::weld_pass() {
   // Pathological vertices (angle guard) are welded whenever the weld keeps the error within
   // T + eps; they are flagged by a negative key and go first.
   const double guard_limit = options_.threshold + options_.epsilon;
-  auto weld_key = [&](const DiamondChange& plan, double error) {
-    if (weld_allowed(plan, error)) return pathological_star(plan) ? -1.0 - error : error;
+  // The key of a weld candidate: its post-weld error, measured only as far as the criteria's
+  // ceiling for the star's current error needs; NaN when the weld is not allowed.
+  auto weld_key = [&](const DiamondChange& plan) {
+    const double current = star_error(plan);
+    const double error = samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan, current));
+    if (weld_allowed(plan, error, current)) return pathological_star(plan) ? -1.0 - error : error;
     if (error <= guard_limit && pathological_star(plan)) return -1.0 - error;
     return std::numeric_limits<double>::quiet_NaN();
   };
@@ -278,8 +281,7 @@ void Adapter::weld_pass() {
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
-    key[static_cast<std::size_t>(i)] =
-        weld_key(plan, samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan)));
+    key[static_cast<std::size_t>(i)] = weld_key(plan);
   }
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
@@ -303,7 +305,7 @@ void Adapter::weld_pass() {
       const Vertex apex = plan.halves[h].parent_vertices[0];
       DiamondChange next;
       if (!mesh_.plan_weld(apex, next)) continue;
-      const double k = weld_key(next, samples_.weld_error(mesh_, probe_, next, weld_ceiling(next)));
+      const double k = weld_key(next);
       if (!std::isnan(k)) queue.push(entry(k, apex.idx));
     }
   }

@@ -70,10 +70,12 @@ class Adapter {
   void weld_pass();
   void split_pass(bool initial);
   double split_urgency(Face f, bool initial) const;
-  bool weld_allowed(const DiamondChange& plan, double error) const;
+  // `error`: the post-weld error; `current`: star_error(plan), the star's error now.
+  bool weld_allowed(const DiamondChange& plan, double error, double current) const;
   double star_error(const DiamondChange& plan) const;
-  // The largest post-weld error any applicable criterion could allow (pruning bound).
-  double weld_ceiling(const DiamondChange& plan) const;
+  // The largest post-weld error any applicable criterion could allow for a star whose error
+  // is now `current` (pruning bound).
+  double weld_ceiling(const DiamondChange& plan, double current) const;
   bool pathological(Face f) const;
   bool split_refused(Face f) const;
   bool pathological_star(const DiamondChange& plan) const;
