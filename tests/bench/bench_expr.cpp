@@ -32,13 +32,21 @@ std::unique_ptr<Surface> scene(bool typed, bool sphere) {
   return s;
 }
 
+// kPoints points uniformly in [-1, 1]^n, the same at every run.
+template <class V>
+std::vector<V> random_points() {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<V> points(kPoints);
+  for (V& p : points)
+    for (int i = 0; i < p.size(); ++i) p[i] = u(rng);
+  return points;
+}
+
 void sphere_value_gradient(benchmark::State& state) {
   const auto s = scene(state.range(0) != 0, true);
   const auto& f = dynamic_cast<const ImplicitSurface&>(*s);
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> points(kPoints);
-  for (Vec3& p : points) p = Vec3(u(rng), u(rng), u(rng));
+  const std::vector<Vec3> points = random_points<Vec3>();
   for (auto _ : state) {
     double sum = 0;
     for (const Vec3& p : points) {
@@ -54,10 +62,7 @@ void sphere_value_gradient(benchmark::State& state) {
 void sphere_hessian(benchmark::State& state) {
   const auto s = scene(state.range(0) != 0, true);
   const auto& f = dynamic_cast<const ImplicitSurface&>(*s);
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> points(kPoints);
-  for (Vec3& p : points) p = Vec3(u(rng), u(rng), u(rng));
+  const std::vector<Vec3> points = random_points<Vec3>();
   for (auto _ : state) {
     double sum = 0;
     for (const Vec3& p : points) sum += f.hessian(p)(0, 1);
@@ -70,10 +75,7 @@ template <bool kDerivatives>
 void sinc_evaluation(benchmark::State& state) {
   const auto s = scene(state.range(0) != 0, false);
   const auto& f = dynamic_cast<const ParametricSurface&>(*s);
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec2> uvs(kPoints);
-  for (Vec2& uv : uvs) uv = Vec2(u(rng), u(rng));
+  const std::vector<Vec2> uvs = random_points<Vec2>();
   for (auto _ : state) {
     double sum = 0;
     for (const Vec2& uv : uvs) sum += kDerivatives ? f.derivatives(uv).su.y() : f.position(uv).y();

@@ -32,6 +32,16 @@ Vec3 random_barycentric(std::mt19937_64& rng) {
   return Vec3(1 - a - b, a, b);
 }
 
+// A model fitted to 16 random samples of the quadratic with these coefficients.
+QuadraticErrorModel fitted(const Eigen::Matrix3d& coefficients, std::mt19937_64& rng) {
+  QuadraticErrorModel model;
+  for (int s = 0; s < 16; ++s) {
+    const Vec3 b = random_barycentric(rng);
+    model.add(b, quadratic(coefficients, b));
+  }
+  return model;
+}
+
 TEST(QuadraticErrorModel, ScalarMaximumMatchesDenseSearch) {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> n(0.0, 1.0);
@@ -39,12 +49,7 @@ TEST(QuadraticErrorModel, ScalarMaximumMatchesDenseSearch) {
   for (int trial = 0; trial < 300; ++trial) {
     Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
     c.col(0) = Vec3(n(rng), n(rng), n(rng));
-    QuadraticErrorModel model;
-    for (int s = 0; s < 16; ++s) {
-      const Vec3 b = random_barycentric(rng);
-      model.add(b, quadratic(c, b));
-    }
-    const QuadraticErrorModel::Result r = model.evaluate();
+    const QuadraticErrorModel::Result r = fitted(c, rng).evaluate();
     ASSERT_TRUE(r.resolved);
     const double dense = dense_maximum(c);
     // The dense grid can only under-estimate the true maximum, by O(h^2).
@@ -63,12 +68,7 @@ TEST(QuadraticErrorModel, VectorMaximumWithinOnePercentOfDenseSearch) {
   for (int trial = 0; trial < 100; ++trial) {
     Eigen::Matrix3d c;
     for (int i = 0; i < 9; ++i) c(i / 3, i % 3) = n(rng);
-    QuadraticErrorModel model;
-    for (int s = 0; s < 16; ++s) {
-      const Vec3 b = random_barycentric(rng);
-      model.add(b, quadratic(c, b));
-    }
-    const QuadraticErrorModel::Result r = model.evaluate();
+    const QuadraticErrorModel::Result r = fitted(c, rng).evaluate();
     ASSERT_TRUE(r.resolved);
     const double dense = dense_maximum(c);
     EXPECT_GE(r.error, 0.99 * dense) << trial;

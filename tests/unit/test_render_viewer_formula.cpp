@@ -21,6 +21,7 @@
 #include "core/surface/expression/expression.h"
 #include "core/surface/scene_registry.h"
 #include "test_render_scratch.h"
+#include "test_render_step_request.h"
 
 namespace dynamesh {
 namespace {
@@ -347,13 +348,7 @@ SimulationControls coarse_expr(const TextOptions& text) {
   return c;
 }
 
-StepRequest at(double t, const SimulationControls& c, bool restart = false) {
-  StepRequest r;
-  r.time = t;
-  r.controls = c;
-  r.restart = restart;
-  return r;
-}
+using test::at;
 
 TEST(FormulaSimulation, AFormulaThatFailsToBuildLeavesTheLastGoodMeshOnScreen) {
   const SimulationControls good =

@@ -12,6 +12,7 @@
 #include "core/adapt/adapter.h"
 #include "core/surface/scene_registry.h"
 #include "core/surface/scenes/sphere_scene.h"
+#include "test_render_step_request.h"
 
 namespace dynamesh {
 namespace {
@@ -25,13 +26,7 @@ SimulationControls coarse(const std::string& scene = "capsule-bend") {
   return c;
 }
 
-StepRequest at(double t, const SimulationControls& c, bool restart = false) {
-  StepRequest r;
-  r.time = t;
-  r.controls = c;
-  r.restart = restart;
-  return r;
-}
+using test::at;
 
 // The same adaptation without the viewer: the CLI's sequence of calls.
 struct DirectRun {
