@@ -29,6 +29,8 @@ struct RunOptions {
   int export_every = 1;
   int width = 1280, height = 960;
   std::string color = "error";
+  double max_seconds = 0.0;      // 0: no wall-time budget
+  double max_memory_mb = 4096.0;  // the budgets' memory estimate must stay below
   bool quiet = false;
   bool check = false;  // run the mesh invariant check after every step
 };

@@ -33,7 +33,10 @@ std::string to_json(const RunSummary& s) {
       << ",\"vertices_kept\":" << l.vertices_kept
       << ",\"kept_fraction\":" << number(l.kept_fraction)
       << ",\"survivor_displacement_mean\":" << number(l.survivor_displacement_mean)
-      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false") << "}";
+      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
+      << ",\"sample_budget_hit\":" << (s.sample_budget_hit ? "true" : "false")
+      << ",\"time_budget_hit\":" << (s.time_budget_hit ? "true" : "false")
+      << ",\"steps_done\":" << s.steps_done << "}";
   return out.str();
 }
 

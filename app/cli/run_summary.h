@@ -16,6 +16,8 @@ struct RunSummary {
   double seconds_per_step_median = 0.0;
   MeshQuality quality;
   bool budget_hit = false;  // in any step
+  bool sample_budget_hit = false, time_budget_hit = false;
+  std::uint64_t steps_done = 0;  // fewer than `steps` when the time budget stopped the run
 };
 
 std::string to_json(const RunSummary& s);

@@ -23,8 +23,9 @@ int main(int argc, char** argv) {
         args.camera_scene = saved.controls.scene;
         args.camera_text = saved.controls.scene_text;
       } catch (const std::exception& e) {  // the command line was fine over the defaults
-        std::fprintf(stderr, "dynamesh: ignoring the saved settings in %s (%s)\n",
-                     state_file.c_str(), e.what());
+        // Shown in the panel too: a broken file must not stop the program from starting.
+        args.notice = "ignoring the saved settings in " + state_file + " (" + e.what() + ")";
+        std::fprintf(stderr, "dynamesh: %s\n", args.notice.c_str());
       }
     }
     args.state_file = state_file;

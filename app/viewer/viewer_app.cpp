@@ -93,6 +93,7 @@ class ViewerApp {
         view_samples_(GlfwWindow::is_software_renderer(window_.renderer()) ? 1 : 4),
         fitted_scene_(args.camera_scene),
         fitted_text_(args.camera_text) {
+    status_ = args.notice;  // e.g. why the saved settings were not used
     if (state_.window_x >= 0 && state_.window_y >= 0)
       window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);

@@ -36,6 +36,8 @@ struct ViewerArgs {
   std::string camera_scene;
   TextOptions camera_text;
   bool help = false;
+  // Shown in the panel's status line at start (e.g. that broken saved settings were ignored).
+  std::string notice;
 
   bool scripted() const { return frames >= 0 || run_for >= 0.0; }
 };

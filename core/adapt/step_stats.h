@@ -30,6 +30,8 @@ struct StepStats {
   std::size_t splits_refused = 0, pathological_welds = 0;
   std::size_t projection_failures = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
+  bool time_budget_hit = false;    // ... at AdaptOptions::deadline
   PhaseSeconds seconds;
 };
 
