@@ -13,6 +13,10 @@
 namespace dynamesh {
 namespace {
 
+// As dynamesh-cli run's limits (run_options.cpp).
+constexpr int kMaxSteps = 10'000'000;
+constexpr int kMaxSmoothIterations = 1000;
+
 // The same strict reading as dynamesh-cli run's (core/io/number_text.h).
 double to_number(const std::string& option, const std::string& text) {
   const std::optional<double> v = parse_finite_number(text);
@@ -151,6 +155,8 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     const std::string& opt = args[i];
     const auto value = [&]() -> const std::string& {
       if (i + 1 >= args.size()) throw std::invalid_argument(opt + " needs a value");
+      if (args[i + 1].empty())
+        throw std::invalid_argument(opt + " needs a value, got an empty string");
       return args[++i];
     };
     if (opt == "--help" || opt == "-h") {

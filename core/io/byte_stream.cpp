@@ -53,6 +53,12 @@ std::size_t ByteStream::read_plain(unsigned char* out, std::size_t n) {
 
 std::size_t ByteStream::read_gzip(unsigned char* out, std::size_t n) {
   Inflater& s = *inflater_;
+  if (position_ == 0 && s.z.total_in == 0 && s.z.avail_in == 0) {
+    s.z.avail_in = static_cast<uInt>(std::fread(s.in.data(), 1, s.in.size(), file_));
+    s.z.next_in = s.in.data();
+    if (s.z.avail_in < 2 || s.z.next_in[0] != 0x1f || s.z.next_in[1] != 0x8b)
+      throw std::runtime_error("named .gz but not gzip-compressed");
+  }
   std::size_t got = 0;
   while (got < n) {
     if (s.member_end) {

@@ -159,7 +159,8 @@ void check_placement(const std::filesystem::path& path, const VoxelGrid& grid,
   double edges = 1.0;
   for (int a = 0; a < 3; ++a) {
     const double size = grid.linear.col(a).norm();
-    if (!(size >= kMinVoxelMm && size <= kMaxVoxelMm)) {
+    // The header stores float: 0.01f is 0.0099999998.
+    if (!(size >= kMinVoxelMm * (1 - 1e-6) && size <= kMaxVoxelMm * (1 + 1e-6))) {
       fail(path, "voxel size " + number(size) + " mm along axis " + "ijk"[a] + from +
                      " is outside [" + number(kMinVoxelMm) + ", " + number(kMaxVoxelMm) +
                      "] mm");
@@ -192,6 +193,11 @@ VoxelGrid placement(const std::filesystem::path& path, const nifti_1_header& h,
     }
     used = VoxelPlacement::kSform;
   } else if (h.qform_code > 0) {
+    // nifticlib takes a pixdim that is not positive as 1; a non-finite one is a broken header.
+    for (int i = 1; i <= 3; ++i)
+      if (!std::isfinite(h.pixdim[i])) fail(path, "pixdim[" + std::to_string(i) + "] is non-finite (qform)");
+    for (const float q : {h.quatern_b, h.quatern_c, h.quatern_d, h.qoffset_x, h.qoffset_y, h.qoffset_z})
+      if (!std::isfinite(q)) fail(path, "qform quaternion or offset is non-finite");
     const float qfac = h.pixdim[0] < 0.0f ? -1.0f : 1.0f;
     const mat44 m =
         nifti_quatern_to_mat44(h.quatern_b, h.quatern_c, h.quatern_d, h.qoffset_x, h.qoffset_y,

@@ -32,19 +32,26 @@ struct Outcome {
 // Single quotes for the shell.
 std::string quoted(const std::string& word) {
   std::string q = "'";
-  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+  for (char c : word) {
+    if (c == '\'')
+      q.append("'\\''");
+    else
+      q.push_back(c);
+  }
+  q.push_back('\'');
+  return q;
 }
 
 Outcome run(const std::vector<std::string>& args, int limit = kLimitSeconds) {
   static const fs::path dir = test::scratch_dir("cli_hostile");
   const fs::path err = dir / "stderr.txt";
-  std::string command = "timeout -s KILL " + std::to_string(limit) + " " + kCli;
-  for (const std::string& a : args) command += " " + quoted(a);
-  command += " 2>" + err.string();
+  std::ostringstream command;
+  command << "timeout -s KILL " << limit << " " << kCli;
+  for (const std::string& a : args) command << " " << quoted(a);
+  command << " 2>" << err.string();
   Outcome r;
   const auto start = std::chrono::steady_clock::now();
-  FILE* pipe = ::popen(command.c_str(), "r");
+  FILE* pipe = ::popen(command.str().c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
   std::size_t n;
@@ -106,7 +113,7 @@ TEST(CliHostile, NiftiHeadersWithAbsurdPlacementsAreRefused) {
     h = ball_header();
     h.qform_code = qform;
     h.pixdim[1] = h.pixdim[2] = h.pixdim[3] = 1e30f;
-    expect_refused(mri(write_volume("pixdim_all_" + std::to_string(qform) + ".nii", h)),
+    expect_refused(mri(write_volume(std::to_string(qform) + "_pixdim_all_.nii", h)),
                    "outside [0.01, 100] mm");
   }
   for (const int row : {0, 1, 2}) {
@@ -114,13 +121,13 @@ TEST(CliHostile, NiftiHeadersWithAbsurdPlacementsAreRefused) {
     test::set_sform(h, Mat3::Identity(), Vec3::Zero());
     float* rows[3] = {h.srow_x, h.srow_y, h.srow_z};
     rows[row][row] = 1e30f;
-    expect_refused(mri(write_volume("srow_1e30_" + std::to_string(row) + ".nii", h)),
+    expect_refused(mri(write_volume(std::to_string(row) + "_srow_1e30_.nii", h)),
                    "outside [0.01, 100] mm");
   }
   for (const float size : {1e-5f, 1e6f}) {
     h = ball_header();
     h.pixdim[1] = h.pixdim[2] = h.pixdim[3] = size;
-    expect_refused(mri(write_volume("pixdim_" + std::to_string(size) + ".nii", h)),
+    expect_refused(mri(write_volume(std::to_string(size) + "_pixdim_.nii", h)),
                    "outside [0.01, 100] mm");
   }
   h = ball_header();
@@ -173,7 +180,8 @@ std::vector<std::string> height(const std::string& formula) {
 TEST(CliHostile, FormulasNoMeshCanFollowAreRefusedUpFront) {
   expect_refused(implicit("x<0 ? x^2+y^2+z^2-1 : x^2+y^2+z^2-0.5"), "jumps across zero");
   expect_refused(implicit("x^2+y^2+z^2-1+0.9*sin(3*atan2(y,x))"), "scene expr at t = ");
-  expect_refused(implicit("x^2+y^2+z^2-1+t*sin(40*x)"), "triangles");
+  // Star-shaped at t = 0, not from t = 0.25 on: the box mesh could not follow it.
+  expect_refused(implicit("x^2+y^2+z^2-1+t*sin(40*x)"), "at t = 0.25");
   expect_refused(implicit("x^2+y^2+z^2-1e12", "-2e6,-2e6,-2e6,2e6,2e6,2e6"), "triangles");
   for (const char* f : {"1e308*x", "tan(x*pi/2)", "exp(100*x)", "exp(700*x)", "sin(1000*x)"})
     expect_refused(height(f), "scene expr at t = ");
@@ -271,20 +279,20 @@ TEST(CliHostile, SampleBudgetStopsRefinementAndIsReported) {
   // At a low density every face holds its minimum of 9 samples, more than density * area:
   // the estimate up front passes, the running count reaches the budget.
   const Outcome r = run({"run", "--scene", "sphere", "--steps", "0", "--density", "10",
-                         "--max-samples", "5000", "--quiet"});
+                         "--max-samples", "2000", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = last_json(r.out);
   EXPECT_TRUE(j["sample_budget_hit"].get<bool>());
   // A split adds at most two faces' worth of samples (256 each) past the check.
-  EXPECT_LE(j["samples"].get<double>(), 5000 + 4 * 256);
-  EXPECT_NE(r.err.find("the sample budget (--max-samples 5000) stopped refinement"),
+  EXPECT_LE(j["samples"].get<double>(), 2000 + 4 * 256);
+  EXPECT_NE(r.err.find("the sample budget (--max-samples 2000) stopped refinement"),
             std::string::npos)
       << r.err;
   const Outcome free = run({"run", "--scene", "sphere", "--steps", "0", "--density", "10",
                             "--quiet"});
   ASSERT_EQ(free.status, 0) << free.err;
   EXPECT_FALSE(last_json(free.out)["sample_budget_hit"].get<bool>());
-  EXPECT_GT(last_json(free.out)["samples"].get<double>(), 5000);
+  EXPECT_GT(last_json(free.out)["samples"].get<double>(), 2000);
 }
 
 }  // namespace

@@ -281,7 +281,7 @@ TEST(NiftiVolumeErrors, SingularTransform) {
 TEST(NiftiVolumeErrors, GzipFileThatIsNotGzip) {
   const auto path = scratch_dir("nifti_err_gz") / "x.nii.gz";
   test::write_text(path, std::string(2000, 'z'));
-  expect_error(path, "not a NIfTI-1 file");
+  expect_error(path, "not gzip-compressed");
 }
 
 }  // namespace
@@ -303,7 +303,7 @@ TEST(NiftiVolumeHostile, AbsurdOrNonFiniteVoxelSizesAreRefused) {
         nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
         h.qform_code = static_cast<short>(qform);
         h.pixdim[axis] = size;
-        const auto path = dir / ("p" + std::to_string(n++) + ".nii");
+        const auto path = dir / (std::to_string(n++) + "_p.nii");
         write_nifti(path, h, values);
         expect_error(path, "is outside [0.01, 100] mm");
       }
@@ -312,7 +312,7 @@ TEST(NiftiVolumeHostile, AbsurdOrNonFiniteVoxelSizesAreRefused) {
       nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
       h.qform_code = static_cast<short>(qform);
       h.pixdim[2] = bad;
-      const auto path = dir / ("nf" + std::to_string(n++) + ".nii");
+      const auto path = dir / (std::to_string(n++) + "_nf.nii");
       write_nifti(path, h, values);
       expect_error(path, "non-finite");
     }
@@ -321,7 +321,7 @@ TEST(NiftiVolumeHostile, AbsurdOrNonFiniteVoxelSizesAreRefused) {
   for (const float size : {0.01f, 100.0f}) {
     nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
     h.pixdim[1] = h.pixdim[2] = h.pixdim[3] = size;
-    const auto path = dir / ("ok" + std::to_string(n++) + ".nii");
+    const auto path = dir / (std::to_string(n++) + "_ok.nii");
     write_nifti(path, h, values);
     EXPECT_NEAR(read_nifti_volume(path).volume.grid.spacing()[0], size, 1e-6 * size);
   }
@@ -368,7 +368,7 @@ TEST(NiftiVolumeHostile, HeaderClaimingMoreDataThanTheFileIsRefusedBeforeAllocat
   // size (plain) or as the data runs out (gzip). Must be quick and small: the reader grows
   // its buffer only as data arrives (gzip) or checks the file size first (plain).
   h = make_header({600, 600, 600}, DT_FLOAT64, 64);
-  nifti_1_header wide = make_header({32767, 200, 100}, DT_INT16, 16);
+  nifti_1_header wide = make_header({32767, 100, 20}, DT_INT16, 16);
   for (const char* name : {"big.nii", "big.nii.gz", "wide.nii", "wide.nii.gz"}) {
     write_nifti(dir / name, name[0] == 'b' ? h : wide, nullptr, 0);
     const auto start = std::chrono::steady_clock::now();

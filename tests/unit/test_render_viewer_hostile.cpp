@@ -4,6 +4,8 @@
 // never crashes or hangs. The real viewer runs under xvfb-run with `timeout`.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -58,7 +60,7 @@ TEST(ViewerHostile, SavedValuesAreCheckedLikeCommandLineValues) {
       {"smooth_iterations", "2147483647"}, {"camera.distance", "-5"},
       {"camera.distance", "1e38"},         {"camera.fov_y_degrees", "0"},
       {"camera.fov_y_degrees", "180"},     {"wire_width", "1e30"},
-      {"scene", std::string(20000, 'x')},  {"density", "1e400"},
+      {"scene", std::string(20000, 'x')},  {"density", "0"},
       {"steps", "0"},                      {"camera.rotation", "0 0 0 0"},
       {"record_fps", "0"},                 {"threshold", "-1"}};
   for (const auto& [key, value] : bad) {
@@ -72,19 +74,29 @@ TEST(ViewerHostile, SavedValuesAreCheckedLikeCommandLineValues) {
   ViewerState saved;
   ASSERT_TRUE(load_viewer_state(saved, (dir / "good.conf").string()));
   EXPECT_EQ(refusal({}, saved), "(accepted)");
+  // Values that do not read as numbers are skipped (the default stays) and reported.
+  std::ofstream(dir / "malformed.conf")
+      << "scene = sinc\ndensity = 1e400\nk = nan\nsteps = 4294967297\nthreshold = 0.01\n";
+  ViewerState fresh;
+  std::vector<std::string> rejected;
+  ASSERT_TRUE(load_viewer_state(fresh, (dir / "malformed.conf").string(), &rejected));
+  EXPECT_EQ(rejected, (std::vector<std::string>{"density", "k", "steps"}));
+  EXPECT_EQ(fresh.controls.density, ViewerState{}.controls.density);
+  EXPECT_EQ(fresh.steps, ViewerState{}.steps);
+  EXPECT_EQ(fresh.controls.threshold, 0.01);
 }
 
-struct Run {
+struct ViewerRun {
   int status = -1;
   std::string output;
 };
 
-Run run_viewer(const std::string& options, const fs::path& log) {
+ViewerRun run_viewer(const std::string& options, const fs::path& log) {
   const std::string command = "timeout -s KILL 60 xvfb-run -a -s '-screen 0 1280x800x24' '" +
                               std::string(DYNAMESH_VIEWER) + "' " + options + " > '" +
                               log.string() + "' 2>&1";
   const int raw = std::system(command.c_str());
-  Run r;
+  ViewerRun r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   std::ifstream in(log);
   r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -97,7 +109,7 @@ TEST(ViewerHostile, StartsWhateverItsSavedStateHolds) {
   // The 20,000-character scene name that aborted ImGui at every start.
   std::ofstream(state) << "scene = " << std::string(20000, 'x') << "\nsmooth_iterations = 2\n";
   const fs::path shot = dir / "shot.png";
-  const Run r = run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" +
+  const ViewerRun r = run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" +
                                shot.string() + "'",
                            dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output.substr(0, 2000);

@@ -229,7 +229,7 @@ void check_closed(const std::string& path, const std::vector<std::array<std::uin
         "base mesh " + path + ": " + std::to_string(open) +
         " edges are not shared by exactly two triangles (e.g. vertices " +
         std::to_string(example.first) + " and " + std::to_string(example.second) +
-        "): an implicit surface is closed, so its base mesh must be a closed surface too");
+        "): an implicit surface is closed, so its base mesh must be a closed manifold too");
 }
 
 }  // namespace

@@ -220,7 +220,7 @@ TriangleMesh read_ply(const std::string& path) {
     if (e.count > room / std::max<std::uint64_t>(item, 1))
       fail(path, "element '" + e.name + "' claims " + std::to_string(e.count) +
                      " items, more than the file's remaining " + std::to_string(room) +
-                     " bytes can hold");
+                     " bytes can hold (the data ends early)");
     room -= e.count * item;
   }
 
