@@ -5,6 +5,7 @@
 // static locals), so what is on screen can always be saved and reproduced.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "app/render/camera.h"
@@ -13,6 +14,15 @@
 #include "app/viewer/simulation.h"
 
 namespace dynamesh {
+
+// The adaptation settings whose meaning depends on a scene's units (mri is in millimetres,
+// the analytic scenes about one unit across): kept per scene, so each scene opens at the
+// settings last used with it, or at its suggestions the first time.
+struct SceneSettings {
+  double threshold = 0.008, epsilon = 0.002, density = 2000.0, edge_length = 0.0;
+
+  bool operator==(const SceneSettings&) const = default;
+};
 
 struct ViewerState {
   // The viewer opens on the sampled error: what the adaptation is about.
@@ -23,6 +33,8 @@ struct ViewerState {
   }
 
   SimulationControls controls;
+  // The settings of the scenes not on screen, by name (the one on screen: `controls`).
+  std::map<std::string, SceneSettings> scene_settings;
   // The formula panel's fields (scene expr) as typed; what runs is controls.scene_text.
   // Not saved: filled again from the saved scene_text at start (formula_draft.h).
   FormulaDraft formula;
@@ -46,6 +58,11 @@ struct ViewerState {
 
   double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
 };
+
+// Switches to `scene`: the current scene's settings go to scene_settings, the new scene's
+// come from there or, the first time, from its suggestions (T, density; eps = T/4; its own
+// edge length). Parameters and text options of the old scene are dropped.
+void switch_scene(ViewerState& state, const std::string& scene);
 
 // Where the viewer keeps its settings between runs: $XDG_CONFIG_HOME/dynamesh/viewer.conf,
 // else ~/.config/dynamesh/viewer.conf; empty when neither variable is set.
