@@ -300,8 +300,8 @@ Adaptation:
   --no-smooth            no tangential smoothing
   --no-structural        no splits or welds (the mesh only moves)
   --no-geometric         no vertex correction: an ablation showing that splits and welds
-                         alone cannot follow a moving surface; a moving scene stops with
-                         exit status 1 as soon as the triangle budget is hit
+                         alone cannot follow a moving surface; the run stops (status 2) at
+                         the first step whose error exceeds T + eps
 Output:
   --stats FILE.csv       one row per step (step 0 is the initial adaptation); - : stdout
   --export-final FILE    the final mesh (.ply binary with per-vertex error, or .obj)

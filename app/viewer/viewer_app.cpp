@@ -168,6 +168,22 @@ class ViewerApp {
 };
 
 void ViewerApp::step_by(int direction) {
+  if (state_.keyframes.size() >= 2) {
+    // Along the keyframes: there and back again (--keyframes 0,1,0) is steps, not a clamp.
+    int next = state_.playhead + direction;
+    bool restart = false;
+    if (next > state_.keyframe_steps()) {
+      if (!state_.loop) {
+        state_.playing = false;
+        return;
+      }
+      next = 0;
+      restart = true;
+    }
+    state_.playhead = std::max(0, next);
+    request(state_.keyframe_time(state_.playhead), restart);
+    return;
+  }
   double t = state_.time + direction * state_.time_step();
   bool restart = false;
   if (t > state_.t1 + 1e-12) {
@@ -346,11 +362,15 @@ void ViewerApp::apply(const PanelActions& a) {
     status_ = "settings reset to defaults";
   } else if (a.restart) {
     history_.clear();
-    request(state_.t0, true);
+    state_.playhead = 0;
+    request(state_.keyframes.empty() ? state_.t0 : state_.keyframe_time(0), true);
   } else if (a.step_forward) {
     step_by(+1);
   } else if (a.step_back) {
-    request(std::max(state_.t0, state_.time - state_.time_step()), false);
+    if (!state_.keyframes.empty())
+      step_by(-1);
+    else
+      request(std::max(state_.t0, state_.time - state_.time_step()), false);
   } else if (a.controls_changed) {
     request(state_.time, false);
   }

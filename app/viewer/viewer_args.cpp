@@ -53,6 +53,7 @@ const char* text_option_key(const std::string& opt, const std::vector<std::strin
 
 std::string viewer_usage() {
   return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--volume FILE] [--t0 T] [--t1 T]\n"
+         "                [--keyframes T0,T1,...] (visited in order, --steps steps each)\n"
          "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
          "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
@@ -124,6 +125,17 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       s.t0 = s.time = to_number(opt, value());
     } else if (opt == "--t1") {
       s.t1 = to_number(opt, value());
+    } else if (opt == "--keyframes") {
+      s.keyframes.clear();
+      const std::string& list = value();
+      for (std::size_t start = 0, comma; start <= list.size(); start = comma + 1) {
+        comma = std::min(list.find(',', start), list.size());
+        const double t = to_number(opt, list.substr(start, comma - start));
+        if (!(t >= 0 && t <= 1)) throw std::invalid_argument("--keyframes: times lie in [0, 1]");
+        s.keyframes.push_back(t);
+      }
+      if (s.keyframes.size() < 2)
+        throw std::invalid_argument("--keyframes expects at least two times, e.g. 0,1,0");
     } else if (opt == "--steps") {
       s.steps = to_int(opt, value());
     } else if (opt == "--threshold") {
@@ -210,6 +222,12 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         "--screenshot, --record and --frame-log need --frames or --run-for");
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
+  if (!s.keyframes.empty()) {
+    s.t0 = *std::min_element(s.keyframes.begin(), s.keyframes.end());
+    s.t1 = *std::max_element(s.keyframes.begin(), s.keyframes.end());
+    s.playhead = 0;
+    s.time = s.keyframes.front();
+  }
   s.time = std::clamp(s.time, s.t0, s.t1);
   s.style.colors.threshold = s.controls.threshold;
   return a;

@@ -1,5 +1,6 @@
 #include "app/viewer/viewer_state.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -214,6 +215,19 @@ bool load_viewer_state(ViewerState& state, const std::string& path) {
   state.controls.scene_parameters = parameters;
   state.controls.scene_text = text;
   return true;
+}
+
+int ViewerState::keyframe_steps() const {
+  return keyframes.size() < 2 ? 0 : static_cast<int>(keyframes.size() - 1) * std::max(steps, 1);
+}
+
+double ViewerState::keyframe_time(int step) const {
+  if (keyframes.empty()) return t0;
+  const int n = std::max(steps, 1);
+  step = std::clamp(step, 0, keyframe_steps());
+  const std::size_t segment = std::min<std::size_t>(step / n, keyframes.size() - 2);
+  const double a = keyframes[segment], b = keyframes[segment + 1];
+  return a + (b - a) * (step - static_cast<int>(segment) * n) / n;
 }
 
 void switch_scene(ViewerState& state, const std::string& scene) {

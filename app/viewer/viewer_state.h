@@ -7,6 +7,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "app/render/camera.h"
 #include "app/render/render_style.h"
@@ -56,7 +57,16 @@ struct ViewerState {
   std::string output_dir = ".";  // screenshots and recordings
   int record_fps = 30;
 
+  // --keyframes: the times playback visits in order, `steps` steps per segment, instead of
+  // t0 .. t1 (t0 and t1 are then the smallest and largest keyframe, for the time slider).
+  // `playhead` counts the steps taken along them. Not saved.
+  std::vector<double> keyframes;
+  int playhead = 0;
+
   double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
+  // Keyframes: the number of steps along all segments, and the time after `step` of them.
+  int keyframe_steps() const;
+  double keyframe_time(int step) const;
 };
 
 // Switches to `scene`: the current scene's settings go to scene_settings, the new scene's

@@ -52,35 +52,57 @@ extern "C" void remove_partials_and_die(int signal) {
 
 }  // namespace
 
-bool is_special_output(const std::string& path) {
+namespace {
+
+enum class Special { kNo, kStdout, kStderr, kInPlace };
+
+// What kind of target `path` is: following every symbolic link, a name that is or leads
+// through /dev or /proc (/dev/stdout -> /proc/self/fd/1 -> the shell's redirection) stands
+// for a file this process may already have open, which must be written, not replaced; its
+// standard output or error are written through their streams, which share the file's offset
+// (a second opening of a redirected stdout would write over what std::cout writes).
+Special special_kind(const std::string& path) {
   namespace fs = std::filesystem;
-  if (path == "-") return true;
-  // Through every symbolic link: a name that is or leads through /dev or /proc
-  // (/dev/stdout -> /proc/self/fd/1 -> the shell's redirection) stands for an open file of
-  // this process, which must be written, not replaced, whatever kind of file it is.
+  if (path == "-") return Special::kStdout;
   fs::path p = path;
   for (int hop = 0; hop < 40; ++hop) {
     const std::string text = fs::absolute(p).lexically_normal().string();
+    for (const char* prefix : {"/dev/fd/", "/proc/self/fd/", "/dev/std"}) {
+      const std::string rest =
+          text.rfind(prefix, 0) == 0 ? text.substr(std::strlen(prefix)) : std::string();
+      if (rest == "1" || rest == "out") return Special::kStdout;
+      if (rest == "2" || rest == "err") return Special::kStderr;
+    }
     const bool shm = text.rfind("/dev/shm/", 0) == 0;  // a file system like any other
-    if ((text.rfind("/dev/", 0) == 0 && !shm) || text.rfind("/proc/", 0) == 0) return true;
+    if ((text.rfind("/dev/", 0) == 0 && !shm) || text.rfind("/proc/", 0) == 0)
+      return Special::kInPlace;
     std::error_code ec;
     const fs::file_status link = fs::symlink_status(p, ec);
-    if (ec || !fs::exists(link)) return false;  // a new file
-    if (!fs::is_symlink(link)) return !fs::is_regular_file(link) && !fs::is_directory(link);
+    if (ec || !fs::exists(link)) return Special::kNo;  // a new file
+    if (!fs::is_symlink(link))
+      return !fs::is_regular_file(link) && !fs::is_directory(link) ? Special::kInPlace
+                                                                     : Special::kNo;
     const fs::path target = fs::read_symlink(p, ec);
-    if (ec) return false;
+    if (ec) return Special::kNo;
     p = target.is_absolute() ? target : p.parent_path() / target;
   }
-  return false;
+  return Special::kNo;
+}
+
+}  // namespace
+
+bool is_special_output(const std::string& path) {
+  return special_kind(path) != Special::kNo;
 }
 
 AtomicFile::AtomicFile(std::string path, std::ios::openmode mode) : path_(std::move(path)) {
-  if (path_ == "-") {
-    out_ = &std::cout;
+  const Special kind = special_kind(path_);
+  if (kind == Special::kStdout || kind == Special::kStderr) {
+    out_ = kind == Special::kStdout ? static_cast<std::ostream*>(&std::cout) : &std::cerr;
     direct_ = true;
     return;
   }
-  direct_ = is_special_output(path_);
+  direct_ = kind == Special::kInPlace;
   // A link to a regular file: its target is replaced, so that the link stays a link.
   std::error_code ec;
   if (!direct_ && std::filesystem::is_symlink(std::filesystem::symlink_status(path_, ec)))

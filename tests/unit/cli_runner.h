@@ -15,6 +15,15 @@
 
 namespace dynamesh::test {
 
+using Args = std::vector<std::string>;
+
+// Options joined: scene(...) + Args{"--threshold", "0.002"}. (Bring it in with
+// `using test::operator+;`: the arguments' namespace is std.)
+inline Args operator+(Args a, const Args& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
 inline const std::string& cli_path() {
   static const std::string path = std::string(DYNAMESH_BINARY_DIR) + "/dynamesh-cli";
   return path;

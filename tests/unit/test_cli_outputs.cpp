@@ -105,14 +105,16 @@ TEST(CliOutputs, AFormulaThatTurnsBadLeavesNoFileBehind) {
   const fs::path dir = test::cli_scratch("turns_bad");
   fs::remove_all(dir);
   const fs::path frames = dir / "frames", meshes = dir / "meshes", csv = dir / "s.csv";
-  // Finite up to t = 0.5, NaN after: steps 0..2 are written before step 3 fails.
-  const CliRun r = run_cli({"--scene", "expr", "--implicit", "x^2+y^2+z^2-1+0*sqrt(0.55-t)",
-                            "--bounds", "-2,-2,-2,2,2,2", "--threshold", "0.05", "--steps", "4",
+  // NaN only for t in (0.29, 0.31), which building the surface does not sample: steps 0..2
+  // (t = 0, 0.1, 0.2) are written before step 3 (t = 0.3) fails.
+  const CliRun r = run_cli({"--scene", "expr", "--implicit",
+                            "x^2+y^2+z^2-1+0*sqrt(abs(t-0.3)-0.01)", "--bounds",
+                            "-2,-2,-2,2,2,2", "--threshold", "0.05", "--steps", "10",
                             "--render", frames.string(), "--width", "64", "--height", "64",
                             "--export", meshes.string(), "--stats", csv.string(),
                             "--export-final", (dir / "final.ply").string(), "--quiet"});
   EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_NE(r.err.find("NaN"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is NaN at (-2, -2, -2), t = 0.3"), std::string::npos) << r.err;
   EXPECT_TRUE(files_in(dir).empty()) << files_in(dir).size() << " files, e.g. "
                                      << files_in(dir).front();
 }

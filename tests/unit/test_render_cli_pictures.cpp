@@ -19,7 +19,8 @@ namespace dynamesh {
 namespace {
 
 namespace fs = std::filesystem;
-using Args = std::vector<std::string>;
+using test::Args;
+using test::operator+;
 
 struct Rgb {
   int r = 0, g = 0, b = 0;

@@ -77,6 +77,19 @@ TEST(ViewerContract, ThresholdRefines) {
   EXPECT_GT(fine.triangles, 2.5 * coarse.triangles) << fine.output << coarse.output;
 }
 
+TEST(ViewerContract, KeyframesSweepThereAndBack) {
+  const fs::path dir = test::render_scratch("viewer_keyframes");
+  // sinc at its peak (t = 0.25), flat at t = 0.5: 3 frames arrive at the flat keyframe,
+  // 5 frames are back at the peak.
+  const std::string run = "--fresh --scene sinc --keyframes 0.25,0.5,0.25 --steps 2 --frames ";
+  const Outcome there = viewer(run + "3", dir, "there");
+  const Outcome back = viewer(run + "5", dir, "back");
+  ASSERT_EQ(there.status, 0) << there.output;
+  ASSERT_EQ(back.status, 0) << back.output;
+  EXPECT_EQ(back.last_step, 4);
+  EXPECT_GT(back.triangles, 2 * there.triangles) << there.output << back.output;
+}
+
 TEST(ViewerContract, EachSceneOpensAtItsOwnSettings) {
   const fs::path dir = test::render_scratch("viewer_scenes");
   const fs::path state = dir / "viewer.conf";
