@@ -6,6 +6,7 @@
 
 #include "app/cli/run_command.h"
 #include "app/cli/run_options.h"
+#include "core/io/atomic_file.h"
 #include "core/surface/scene_registry.h"
 
 namespace {
@@ -32,7 +33,13 @@ std::string one_line(const std::string& text) {
 int main(int argc, char** argv) {
   using namespace dynamesh;
   const std::vector<std::string> args(argv + 1, argv + argc);
+  // Ctrl-C or SIGTERM: no *.partial file stays; frames already complete do (README).
+  remove_partial_files_on_signal();
   try {
+    if (!args.empty() && args[0] == "--version") {
+      std::cout << "dynamesh-cli " << DYNAMESH_VERSION << "\n";
+      return 0;
+    }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
       std::cout << main_help();
       return args.empty() ? 2 : 0;

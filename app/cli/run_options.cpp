@@ -1,13 +1,22 @@
 #include "app/cli/run_options.h"
 
+#include "app/render/color_scale.h"
+
 #include <cmath>
 #include <functional>
 #include <map>
+#include <sstream>
 
 #include "core/io/number_text.h"
 
 namespace dynamesh {
 namespace {
+
+std::string format_number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
 
 double parse_number(const std::string& option, const std::string& text) {
   const std::optional<double> value = parse_finite_number(text);
@@ -51,11 +60,49 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError(e.what());
          }
        }},
-      {"--t0", [](RunOptions& o, auto& k, auto& v) { o.t0 = parse_number(k, v); }},
-      {"--t1", [](RunOptions& o, auto& k, auto& v) { o.t1 = parse_number(k, v); }},
+      {"--t0",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.t0 = parse_number(k, v);
+         o.interval_given = true;
+       }},
+      {"--t1",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.t1 = parse_number(k, v);
+         o.interval_given = true;
+       }},
+      {"--keyframes",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.keyframes.clear();
+         std::size_t start = 0;
+         for (std::size_t comma; start <= v.size(); start = comma + 1) {
+           comma = std::min(v.find(',', start), v.size());
+           o.keyframes.push_back(parse_number(k, v.substr(start, comma - start)));
+         }
+         if (o.keyframes.size() < 2)
+           throw UsageError(k + " expects at least two times, e.g. 0,1,0");
+       }},
+      {"--camera",
+       [](RunOptions& o, auto& k, auto& v) {
+         try {
+           o.camera = parse_camera_view(v);
+         } catch (const std::invalid_argument& e) {
+           throw UsageError(k + ": " + e.what());
+         }
+       }},
+      {"--color-range",
+       [](RunOptions& o, auto& k, auto& v) {
+         try {
+           parse_color_range(v, o.colors);
+         } catch (const std::invalid_argument& e) {
+           throw UsageError(k + ": " + e.what());
+         }
+       }},
       {"--steps", [](RunOptions& o, auto& k, auto& v) { o.steps = parse_int(k, v, 0, kMaxSteps); }},
       {"--threshold",
-       [](RunOptions& o, auto& k, auto& v) { o.adapt.threshold = parse_number(k, v); }},
+       [](RunOptions& o, auto& k, auto& v) {
+         o.adapt.threshold = parse_number(k, v);
+         o.threshold_given = true;
+       }},
       {"--epsilon",
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.epsilon = parse_number(k, v);
@@ -142,6 +189,12 @@ const std::map<std::string, Setter>& valued_options() {
       {"--width",
        [](RunOptions& o, auto& k, auto& v) { o.width = parse_int(k, v, 16, kMaxImageSide); }},
       {"--color", [](RunOptions& o, auto&, auto& v) { o.color = v; }},
+      {"--smooth-weights",
+       [](RunOptions& o, auto& k, auto& v) {
+         if (v != "uniform" && v != "inverse-length")
+           throw UsageError(k + " expects uniform or inverse-length, got '" + v + "'");
+         o.adapt.smoothing.scale_invariant_weights = v == "inverse-length";
+       }},
   };
   return table;
 }
@@ -154,6 +207,8 @@ const std::map<std::string, std::function<void(RunOptions&)>>& flag_options() {
       {"--no-smooth", [](RunOptions& o) { o.adapt.smoothing.enabled = false; }},
       {"--no-structural", [](RunOptions& o) { o.adapt.structural = false; }},
       {"--no-geometric", [](RunOptions& o) { o.adapt.geometric = false; }},
+      {"--wireframe", [](RunOptions& o) { o.wireframe = true; }},
+      {"--no-wireframe", [](RunOptions& o) { o.wireframe = false; }},
   };
   return table;
 }
@@ -161,10 +216,16 @@ const std::map<std::string, std::function<void(RunOptions&)>>& flag_options() {
 void validate(RunOptions& o) {
   const AdaptOptions& a = o.adapt;
   if (!(a.threshold > 0)) throw UsageError("--threshold must be positive (try 0.008)");
-  if (!o.epsilon_given) o.adapt.epsilon = 0.25 * a.threshold;
-  if (o.adapt.epsilon < 0 || o.adapt.epsilon >= a.threshold)
-    throw UsageError(
-        "--epsilon must be in [0, threshold): the weld bound T - eps must stay positive");
+  if (o.adapt.epsilon < 0) throw UsageError("--epsilon must not be negative");
+  // Against a given T here; against the scene's T in apply_scene_defaults.
+  if (o.threshold_given && o.epsilon_given && o.adapt.epsilon >= a.threshold)
+    throw UsageError("--epsilon " + format_number(o.adapt.epsilon) + " must be below --threshold " +
+                     format_number(a.threshold) + ": the weld bound T - eps must stay positive");
+  if (!o.keyframes.empty() && o.interval_given)
+    throw UsageError("--keyframes replaces --t0 and --t1: give one or the other");
+  for (double t : o.keyframes)
+    if (t < 0 || t > 1) throw UsageError("--keyframes: every time must lie in [0, 1]");
+  if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
   if (!(a.density > 0)) throw UsageError("--density must be positive (samples per unit area)");
   if (o.steps < 0) throw UsageError("--steps must not be negative (0 adapts once at --t0)");
   if (a.smoothing.iterations < 0) throw UsageError("--smooth-iters must not be negative");
@@ -185,9 +246,13 @@ void apply_scene_defaults(RunOptions& o, const SceneInfo& scene) {
   if (!o.threshold_given) o.adapt.threshold = scene.suggested_threshold;
   if (!o.density_given) o.adapt.density = scene.suggested_density;
   if (!o.epsilon_given) o.adapt.epsilon = 0.25 * o.adapt.threshold;
-  if (o.adapt.epsilon >= o.adapt.threshold)
-    throw UsageError("--epsilon must be below the threshold (" + std::to_string(o.adapt.threshold) +
-                     " for scene " + scene.name + "): the weld bound T - eps must stay positive");
+  if (o.adapt.epsilon >= o.adapt.threshold) {
+    const std::string which = o.threshold_given ? "--threshold " + format_number(o.adapt.threshold)
+                                                : "the threshold of scene " + scene.name + ", " +
+                                                      format_number(o.adapt.threshold);
+    throw UsageError("--epsilon " + format_number(o.adapt.epsilon) + " must be below " + which +
+                     ": the weld bound T - eps must stay positive");
+  }
 }
 
 RunOptions parse_run_options(const std::vector<std::string>& args) {
@@ -216,6 +281,7 @@ Usage:
   dynamesh-cli run [options]     run a scene over time; see 'dynamesh-cli run --help'
   dynamesh-cli scenes            list the scenes and their parameters
   dynamesh-cli --help            this text
+  dynamesh-cli --version         the version
 
 Example:
   dynamesh-cli run --scene sinc --steps 100 --threshold 0.004 --stats sinc.csv \
@@ -228,9 +294,11 @@ std::string run_help() {
 
 Adapts the scene's base mesh to S(t0), then takes N steps to t1, keeping every sampled
 error within T + eps with few triangles (de Goes et al. 2006). Progress goes to stderr;
-the last line of stdout is a JSON summary (triangles, vertices, max_sample_error,
-mean_sample_error, splits, welds, seconds_per_step (median), valence_min, valence_max,
-min_angle_deg, ...). Bad input: one line on stderr and exit status 2.
+the last line of stdout is a JSON summary: the last step's triangles, vertices,
+max_sample_error, mean_sample_error; over the run splits, welds, seconds_per_step
+(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles;
+the final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
+stderr, exit status 2, and none of the run's output files.
 
 Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
@@ -240,8 +308,10 @@ Scene:
                          (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh
 Time:
-  --t0 T0 --t1 T1        animation interval [0, 1]
-  --steps N              N steps from t0 to t1; 0 adapts once at t0  [50]
+  --t0 T0 --t1 T1        animation interval [0, 1]  [0, 1]
+  --keyframes T0,T1,...  visit these times in order instead (0,1,0: there and back)
+  --steps N              N steps per interval (per keyframe segment); 0 adapts once at t0
+                         [50]; step 0 is the initial adaptation, so N steps give N+1 rows
 Adaptation:
   --threshold T          target geometric error, scene units  [the scene's: 0.008; mri 0.5 mm]
   --epsilon E            hysteresis: weld below T-E, split above T+E, 0 <= E < T  [T/4]
@@ -258,20 +328,35 @@ Adaptation:
   --seed S               sample jitter seed  [1]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
+  --smooth-weights W     the one-ring centroid of Equation 1: uniform (the paper's) or
+                         inverse-length (scale-invariant: keeps the 4-8 grading)  [uniform]
   --smooth-raw-curvature use raw curvature in Equation 1 (default: normalised to [0, 1])
   --no-smooth            no tangential smoothing
   --no-structural        no splits or welds (the mesh only moves)
-  --no-geometric         no vertex correction (the mesh only refines)
+  --no-geometric         no vertex correction: an ablation showing that splits and welds
+                         alone cannot follow a moving surface; the run stops (status 2) at
+                         the first step whose error exceeds T + eps
 Output:
-  --stats FILE.csv       one row per step (step 0 is the initial adaptation)
+  --stats FILE.csv       one row per step (step 0 is the initial adaptation); - : stdout
   --export-final FILE    the final mesh (.ply binary with per-vertex error, or .obj)
-  --export DIR           a PLY (with the --color field) every --export-every K steps  [1]
+  --export DIR           every --export-every K steps [1] a PLY and a VTK .vtp (with the
+                         --color field), and DIR/frames.pvd: open it in ParaView to play them
   --render DIR           a PNG every --export-every K steps, rendered offscreen (no display
                          needed), --size WxH or --width W --height H  [1280x960]
   --color MODE           error | curvature | intensity (mri) | valence | level | shaded
                          [error: yellow = none, green, red = at or beyond T]
+  --color-range R        what curvature, intensity and level colours span: frame (each
+                         frame's own), first (the first frame's), run (the whole run's),
+                         or MIN,MAX  [frame]
+  --wireframe, --no-wireframe   draw the mesh's edges on the rendered frames  [drawn]
+  --camera VIEW          fit, or AZIMUTH,ELEVATION[,DISTANCE]: degrees about +y and above
+                         the ground plane (90: from above, -90: from below), distance from
+                         the centre in scene units  [fit: 30,20, fitted]
   --check                verify the mesh invariants after every step (slow)
   --quiet                no progress lines
+Files are written whole or not at all (a temporary name, then renamed); /dev/stdout, a
+FIFO or - are written directly. A run stopped by Ctrl-C or SIGTERM leaves no partial
+file: frames already written stay, the CSV and the final mesh do not appear.
 )";
 }
 

@@ -16,6 +16,23 @@ std::string number(double x) {
 
 }  // namespace
 
+void RunSummary::add(const StepStats& s) {
+  total_splits += s.splits;
+  total_welds += s.welds;
+  budget_hit = budget_hit || s.budget_hit;
+  sample_budget_hit = sample_budget_hit || s.sample_budget_hit;
+  time_budget_hit = time_budget_hit || s.time_budget_hit;
+  steps_done = s.step;
+  if (s.triangles > peak_triangles) {
+    peak_triangles = s.triangles;
+    peak_triangles_step = s.step;
+  }
+  if (s.max_error > worst_max_error) {
+    worst_max_error = s.max_error;
+    worst_max_error_step = s.step;
+  }
+}
+
 std::string to_json(const RunSummary& s) {
   std::ostringstream out;
   const StepStats& l = s.last;
@@ -36,7 +53,15 @@ std::string to_json(const RunSummary& s) {
       << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
       << ",\"sample_budget_hit\":" << (s.sample_budget_hit ? "true" : "false")
       << ",\"time_budget_hit\":" << (s.time_budget_hit ? "true" : "false")
-      << ",\"steps_done\":" << s.steps_done << "}";
+      << ",\"steps_done\":" << s.steps_done
+      << ",\"peak_triangles\":" << s.peak_triangles
+      << ",\"peak_triangles_step\":" << s.peak_triangles_step
+      << ",\"worst_max_sample_error\":" << number(s.worst_max_error)
+      << ",\"worst_max_sample_error_step\":" << s.worst_max_error_step
+      << ",\"keyframe_triangles\":[";
+  for (std::size_t i = 0; i < s.keyframe_triangles.size(); ++i)
+    out << (i ? "," : "") << s.keyframe_triangles[i];
+  out << "]}";
   return out.str();
 }
 

@@ -43,6 +43,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dynamesh: %s\n", e.what());
     return 2;
   }
+  if (args.version) {
+    std::printf("dynamesh %s\n", DYNAMESH_VERSION);
+    return 0;
+  }
   if (args.help) {
     std::fputs(viewer_usage().c_str(), stdout);
     return 0;

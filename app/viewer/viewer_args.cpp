@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/io/number_text.h"
+#include "app/render/color_scale.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -118,10 +119,15 @@ const char* text_option_key(const std::string& opt, const std::vector<std::strin
 
 std::string viewer_usage() {
   return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--volume FILE] [--t0 T] [--t1 T]\n"
+         "                [--keyframes T0,T1,...] (visited in order, --steps steps each)\n"
          "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
          "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
-         "                [--width W] [--height H] [--state FILE | --fresh]\n"
+         "                [--color-range frame|first|run|MIN,MAX] [--no-wireframe]\n"
+         "                [--camera fit|AZ,EL[,DIST]] [--width W] [--height H]\n"
+         "                [--state FILE | --fresh] [--version]\n"
+         "each scene opens at the T, eps, density and edge length last used with it (the\n"
+         "first time: the scene's suggestions, as dynamesh-cli run's defaults)\n"
          "a typed surface (scene expr; edit it in the panel's formula section):\n"
          "  --implicit F(x,y,z,t) --bounds xmin,ymin,zmin,xmax,ymax,zmax [--base-mesh FILE]\n"
          "  --height-field f(x,z,t) [--domain xmin,xmax,zmin,zmax]\n"
@@ -138,7 +144,7 @@ std::string viewer_usage() {
                                   : settings_path()) +
          "\n  (--state FILE: another file; --fresh: start from the defaults)\n"
          "keys: space play/pause, arrows step, W wireframe, C colour mode, F fit, P screenshot,\n"
-         "      R record, H panel.  mouse: left drag orbit, right/shift-left drag pan,\n"
+         "      R record, H panel, Esc quit (settings saved).  mouse: left drag orbit, right/shift-left drag pan,\n"
          "      wheel zoom towards the cursor\n";
 }
 
@@ -151,6 +157,20 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   // (whatever the order of --scene and these options).
   ParameterOverrides parameters;
   TextOptions text;
+  // Another scene opens at its own settings (or those last used with it), before the
+  // options given here apply over them, whatever their order.
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == "--scene") {
+      const std::string& name = args[i + 1];
+      const std::vector<SceneInfo> scenes = list_scenes();
+      if (std::none_of(scenes.begin(), scenes.end(),
+                       [&](const SceneInfo& info) { return info.name == name; })) {
+        std::string names;
+        for (const SceneInfo& info : scenes) names += (names.empty() ? "" : ", ") + info.name;
+        throw std::invalid_argument("unknown scene '" + name + "' (scenes: " + names + ")");
+      }
+      switch_scene(s, name);
+    }
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& opt = args[i];
     const auto value = [&]() -> const std::string& {
@@ -161,8 +181,10 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     };
     if (opt == "--help" || opt == "-h") {
       a.help = true;
+    } else if (opt == "--version") {
+      a.version = true;
     } else if (opt == "--scene") {
-      s.controls.scene = value();
+      value();  // switched to above
     } else if (opt == "--param") {
       parameters.push_back(parse_parameter_override(value()));
     } else if (const char* key = text_option_key(opt, args, i)) {
@@ -171,6 +193,17 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       s.t0 = s.time = to_number(opt, value());
     } else if (opt == "--t1") {
       s.t1 = to_number(opt, value());
+    } else if (opt == "--keyframes") {
+      s.keyframes.clear();
+      const std::string& list = value();
+      for (std::size_t start = 0, comma; start <= list.size(); start = comma + 1) {
+        comma = std::min(list.find(',', start), list.size());
+        const double t = to_number(opt, list.substr(start, comma - start));
+        if (!(t >= 0 && t <= 1)) throw std::invalid_argument("--keyframes: times lie in [0, 1]");
+        s.keyframes.push_back(t);
+      }
+      if (s.keyframes.size() < 2)
+        throw std::invalid_argument("--keyframes expects at least two times, e.g. 0,1,0");
     } else if (opt == "--steps") {
       s.steps = to_int(opt, value(), 1, kMaxSteps);
     } else if (opt == "--threshold") {
@@ -181,6 +214,12 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       epsilon_given = true;
     } else if (opt == "--density") {
       s.controls.density = to_number(opt, value());
+    } else if (opt == "--wireframe" || opt == "--no-wireframe") {
+      s.style.wireframe = opt == "--wireframe";
+    } else if (opt == "--camera") {
+      a.camera = parse_camera_view(value());
+    } else if (opt == "--color-range") {
+      parse_color_range(value(), s.style.colors);
     } else if (opt == "--k") {
       s.controls.k = to_number(opt, value());
     } else if (opt == "--smooth-iters") {
@@ -225,13 +264,8 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       throw std::invalid_argument("unknown option '" + opt + "' (dynamesh --help lists them)");
     }
   }
-  // The saved parameters and text options belong to the saved scene. Text options given here
-  // describe the surface whole: saved ones (another formula, another volume) would only
-  // contradict them.
-  if (s.controls.scene != base.controls.scene) {
-    s.controls.scene_parameters.clear();
-    s.controls.scene_text.clear();
-  }
+  // Text options given here describe the surface whole: saved ones (another formula, another
+  // volume) would only contradict them. (switch_scene dropped the other scene's.)
   s.controls.scene_parameters.insert(s.controls.scene_parameters.end(), parameters.begin(),
                                      parameters.end());
   if (!text.empty()) s.controls.scene_text = text;
@@ -245,6 +279,12 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         "--screenshot, --record and --frame-log need --frames or --run-for");
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
+  if (!s.keyframes.empty()) {
+    s.t0 = *std::min_element(s.keyframes.begin(), s.keyframes.end());
+    s.t1 = *std::max_element(s.keyframes.begin(), s.keyframes.end());
+    s.playhead = 0;
+    s.time = s.keyframes.front();
+  }
   s.time = std::clamp(s.time, s.t0, s.t1);
   s.style.colors.threshold = s.controls.threshold;
   return a;
