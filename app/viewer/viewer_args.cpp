@@ -167,7 +167,11 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
                        [&](const SceneInfo& info) { return info.name == name; })) {
         std::string names;
         for (const SceneInfo& info : scenes) names += (names.empty() ? "" : ", ") + info.name;
-        throw std::invalid_argument("unknown scene '" + name + "' (scenes: " + names + ")");
+        throw std::invalid_argument(
+            "unknown scene '" + (name.size() > 40 ? name.substr(0, 40) + "...' (" +
+                                                        std::to_string(name.size()) + " characters)"
+                                                  : name + "'") +
+            " (scenes: " + names + ")");
       }
       switch_scene(s, name);
     }

@@ -173,11 +173,6 @@ void check_placement(const std::filesystem::path& path, const VoxelGrid& grid,
                    ": voxel volume / product of edge lengths = " + number(shape) + " (at least " +
                    number(kMinVoxelShape) + ")");
   }
-  const double reach = grid.offset.norm() + grid.linear.norm() * 32768.0 * 2.0;
-  if (!(reach < kMaxWorldMm)) {
-    fail(path, "voxel-to-world transform places the volume " + number(reach) +
-                   " mm from the origin" + from + " (at most " + number(kMaxWorldMm) + ")");
-  }
 }
 
 // NIfTI-1 placement rules: sform first (method 3), then the quaternion qform (method 2, the
@@ -322,6 +317,14 @@ NiftiVolume read_checked(const std::filesystem::path& path, bool gzipped,
   }
   result.volume.grid = placement(path, header, result.placement);
   result.volume.grid.dims = dims;
+  // Its far corner, not only the origin: a broken offset or a huge volume of big voxels.
+  const double reach =
+      result.volume.grid.offset.norm() +
+      result.volume.grid.linear.norm() * static_cast<double>(*std::max_element(dims.begin(), dims.end()));
+  if (!(reach < kMaxWorldMm)) {
+    fail(path, "voxel-to-world transform places the volume " + number(reach) +
+                   " mm from the origin (at most " + number(kMaxWorldMm) + ")");
+  }
 
   const std::size_t voxels = result.volume.grid.count();
   const std::size_t bytes = voxels * static_cast<std::size_t>(type.bytes);
