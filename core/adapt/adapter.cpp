@@ -130,6 +130,7 @@ const StepStats& Adapter::initialize() {
     split_pass(false);
     stats_.seconds.split += clock.lap();
   }
+  publish_repaired();
   finish_stats();
   return stats_;
 }
@@ -147,8 +148,11 @@ const StepStats& Adapter::step(double t) {
   Stopwatch clock;
   const int n = plan_substeps(from, t);
   stats_.seconds.project = clock.lap();
-  for (int k = 1; k <= n; ++k) advance(k == n ? t : from + (t - from) * k / n, k == 1 && n > 1);
-  publish_repaired();
+  bool corrected = false;
+  for (int k = 1; k <= n; ++k)
+    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && n > 1);
+  // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
+  if (corrected || stats_.splits || stats_.welds) publish_repaired();
   finish_stats();
   return stats_;
 }
@@ -163,11 +167,10 @@ int Adapter::plan_substeps(double from, double to) {
   surface_.set_time(from);
   stats_.substeps = e.substeps;
   stats_.motion_strain = e.strain;
-  stats_.motion_reach = e.reach;
   return e.substeps;
 }
 
-void Adapter::advance(double t, bool rest_points_fresh) {
+bool Adapter::advance(double t, bool rest_points_fresh) {
   Stopwatch clock;
   PhaseSeconds& seconds = stats_.seconds;
   if (options_.geometric && probe_.follows_material() && !rest_points_fresh) record_rest_points();
@@ -184,6 +187,7 @@ void Adapter::advance(double t, bool rest_points_fresh) {
   seconds.weld += clock.lap();
   if (options_.structural) split_pass(false);
   seconds.split += clock.lap();
+  return correct;
 }
 
 void Adapter::repair(const FoldRepairOptions& options) {
@@ -198,7 +202,7 @@ void Adapter::repair(const FoldRepairOptions& options) {
 void Adapter::publish_repaired() {
   // Splits place new vertices on the surface between their parents: over a crease that can
   // fold or thin a face. A frame is published only after a last look (and, if needed, a
-  // repair and a fresh measurement of the moved faces' errors).
+  // repair, a fresh measurement and the splits it asks for).
   if (!options_.geometric || !options_.fold_repair.enabled) return;
   Stopwatch clock;
   std::vector<Face>& folded = bad_faces_[0];
@@ -212,8 +216,12 @@ void Adapter::publish_repaired() {
   }
   repair(options_.fold_repair);
   stats_.seconds.smooth += clock.lap();
+  // The repair moved vertices after they were measured: measure again, and refine where a
+  // move pushed a face above T + eps (a weld pass here could undo what the repair fixed).
   sampling();
   stats_.seconds.sample += clock.lap();
+  if (options_.structural) split_pass(false);
+  stats_.seconds.split += clock.lap();
 }
 
 bool Adapter::surface_changed() {
@@ -239,6 +247,10 @@ void Adapter::normal_correction() {
   const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
   // Surfaces with a rest map: each vertex first goes where its material point went (recorded
   // before the time changed), so the projection below only removes rounding and drift.
+  // Without one, the vertex moves with the surface's normal velocity v = -F_t grad F /
+  // |grad F|^2: Newton's first iterate from p at the new time, -F(p) grad F / |grad F|^2 with
+  // F(p) = F_t dt (p was on the surface), is exactly that prediction; on a distance field
+  // (mri) it moves along the distance gradient. Sub-steps keep dt small enough for it to hold.
   const bool carry = probe_.follows_material() && rest_points_.size() >= mesh_.vertex_capacity();
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)

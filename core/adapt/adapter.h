@@ -66,7 +66,8 @@ class Adapter {
 
   // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
   // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
-  void advance(double t, bool rest_points_fresh);
+  // Returns whether the surface had changed (and the vertices were corrected).
+  bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
   int plan_substeps(double from, double to);
   void repair(const FoldRepairOptions& options);
@@ -110,8 +111,8 @@ class Adapter {
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
-  std::vector<Vec3> displacement_;   // predicted motion per vertex (plan_substeps)
-  std::vector<Face> bad_faces_[2];   // folded faces and slivers (publish_repaired)
+  std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
+  std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
 };
 
 }  // namespace dynamesh

@@ -24,10 +24,10 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
                                  const SubstepOptions& options) {
   MotionEstimate e;
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  double strain = 0.0, reach = 0.0;
+  double strain = 0.0;
   // Every interior edge is seen from both faces: the bound is a maximum, so that is harmless
   // and cheaper than deduplicating.
-#pragma omp parallel for schedule(static) reduction(max : strain, reach) if (n > kParallelMin)
+#pragma omp parallel for schedule(static) reduction(max : strain) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
@@ -39,13 +39,11 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
       const Vec3& da = displacement[a.idx];
       const Vec3& db = displacement[b.idx];
       strain = std::max(strain, (da - db).norm() / length);
-      reach = std::max(reach, std::max(da.norm(), db.norm()) / length);
     }
   }
   e.strain = strain;
-  e.reach = reach;
   if (!options.enabled) return e;
-  const double need = std::max(strain / options.max_strain, reach / options.max_reach);
+  const double need = strain / options.max_strain;
   if (std::isfinite(need) && need > 1.0)
     e.substeps = std::min(options.max_substeps, static_cast<int>(std::ceil(need)));
   else if (!std::isfinite(need))
