@@ -25,6 +25,23 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return smallest;
 }
 
+// Whether the triangle's smallest angle (the one opposite its shortest edge) is below the
+// angle whose cosine is `cos_limit`, without trigonometry: this runs on every face every step.
+bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  Vec3 u, v;
+  if (lab <= lbc && lab <= lca) {
+    u = a - c, v = b - c;
+  } else if (lbc <= lca) {
+    u = b - a, v = c - a;
+  } else {
+    u = a - b, v = c - b;
+  }
+  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
+  return !(norms > 0) || u.dot(v) > cos_limit * norms;
+}
+
 // Folded against the surface: the face's normal points away from the surface normal at one
 // of its corners.
 bool folded_against_surface(const Mesh48& mesh, const Surface& surface, Face f) {
@@ -103,6 +120,7 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     const Vec3 n = face_normal(mesh, f);
     for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += n;
   }
+  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   std::vector<std::uint8_t> kind(static_cast<std::size_t>(n), 0);  // 1 folded, 2 sliver
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
@@ -119,8 +137,7 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     auto& k = kind[static_cast<std::size_t>(i)];
     if (suspect && folded_against_surface(mesh, surface, f))
       k = 1;
-    else if (smallest_angle_deg(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])) <
-             min_angle_deg)
+    else if (below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit))
       k = 2;
   }
   for (std::int64_t i = 0; i < n; ++i) {
@@ -137,6 +154,7 @@ FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOp
   find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers);
   report.folded = folded.size();
   report.slivers = slivers.size();
+  if (folded.empty() && slivers.empty()) return report;  // the usual case: one pass, no repair
   std::vector<Vertex> active, next;
   std::vector<std::uint32_t> seen(mesh.vertex_capacity(), 0);
   for (const auto* list : {&folded, &slivers})
