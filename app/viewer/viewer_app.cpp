@@ -476,10 +476,11 @@ int ViewerApp::finish_scripted(double seconds) {
               renderer_.n_triangles(),
               args_.screenshot.empty() ? "" : (", screenshot " + args_.screenshot).c_str(),
               recorded.c_str());
-  std::printf("dynamesh: scene %s, last step shown %llu (step 0 is the initialisation); uploads: "
-              "%d full, %d positions only, %d colour\n",
-              running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
-              up.geometry, up.scalar);
+  std::printf(
+      "dynamesh: scene %s, last step shown %llu (step 0 is the initialisation); uploads: "
+      "%d full, %d positions only, %d colour\n",
+      running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
+      up.geometry, up.scalar);
   std::printf("dynamesh: %s\n", describe(summarize(frames_, seconds)).c_str());
   if (!error_.empty()) {
     std::fflush(stdout);

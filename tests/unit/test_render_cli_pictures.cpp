@@ -86,8 +86,8 @@ Picture render(const Args& args, const std::string& name, const std::string& fra
 }
 
 // The sinc at t = 0 is flat (amplitude alpha sin 0): its error is zero everywhere.
-const Args kFlatSinc{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color", "error",
-                     "--no-wireframe"};
+const Args kFlatSinc{"--scene", "sinc",  "--steps",       "0", "--t0", "0",
+                     "--color", "error", "--no-wireframe"};
 
 TEST(CliPictures, OpenSurfaceShowsTheBarsColoursFromAboveAndBelow) {
   const glm::vec3 zero = colormap(ColormapId::kErrorYellowGreenRed).sample(0.0f);
@@ -109,16 +109,16 @@ TEST(CliPictures, OpenSurfaceShowsTheBarsColoursFromAboveAndBelow) {
   const Rgb b = below.at(below.width * 2 / 5, below.height / 2);
   EXPECT_LE(std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b), 30);
   // Shaded: the flat grey-blue tint, no colour map.
-  const Picture shaded =
-      render(Args{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color", "shaded",
-                  "--camera", "0,90", "--no-wireframe"},
-             "shaded");
+  const Picture shaded = render(Args{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color",
+                                     "shaded", "--camera", "0,90", "--no-wireframe"},
+                                "shaded");
   EXPECT_LT(saturation(shaded.at(shaded.width / 2, shaded.height / 2)), 0.35);
 }
 
 TEST(CliPictures, CameraDistanceAndElevation) {
   const Args flat{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color", "shaded"};
-  const std::size_t near = render(flat + Args{"--camera", "0,90,3"}, "near").mesh_pixels(320).size();
+  const std::size_t near =
+      render(flat + Args{"--camera", "0,90,3"}, "near").mesh_pixels(320).size();
   const std::size_t far = render(flat + Args{"--camera", "0,90,6"}, "far").mesh_pixels(320).size();
   const std::size_t edge_on =
       render(flat + Args{"--camera", "0,0"}, "edge_on").mesh_pixels(320).size();
@@ -161,10 +161,10 @@ TEST(CliPictures, ValenceIsFlatPerVertexRegion) {
   // such edge would pass through the colour of 6 (yellow); flat per vertex region, the
   // colour of 6 appears nowhere but in anti-aliased pixels along region borders.
   const fs::path meshes = test::render_scratch("valence_meshes");
-  const Picture p = render(Args{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color",
-                                "valence", "--no-wireframe", "--camera", "0,90", "--export",
-                                meshes.string()},
-                           "valence", "00000", "800x600");
+  const Picture p =
+      render(Args{"--scene", "sinc", "--steps", "0", "--t0", "0", "--color", "valence",
+                  "--no-wireframe", "--camera", "0,90", "--export", meshes.string()},
+             "valence", "00000", "800x600");
   const std::vector<double> valence = vtp_field(meshes / "frame_00000.vtp", "valence");
   ASSERT_FALSE(valence.empty());
   ASSERT_EQ(std::count(valence.begin(), valence.end(), 6.0), 0);
@@ -186,8 +186,8 @@ TEST(CliPictures, ColorRangeHoldsAcrossFrames) {
   // sinc from its peak (t = 0.25) to flat (t = 0.5), coloured by curvature. The colour bar
   // (its numbers) is drawn in the image's right strip: per frame it changes with the field,
   // with a fixed range (first frame, whole run, typed) it is the same in every frame.
-  const Args run{"--scene", "sinc", "--steps", "2", "--t0", "0.25", "--t1", "0.5", "--color",
-                 "curvature", "--no-wireframe"};
+  const Args run{"--scene", "sinc", "--steps", "2",         "--t0",          "0.25",
+                 "--t1",    "0.5",  "--color", "curvature", "--no-wireframe"};
   const auto bar_changes = [&](const std::string& range) {
     const Picture first = render(run + Args{"--color-range", range}, "range_" + range, "00000");
     const Picture last = render(run + Args{"--color-range", range}, "range_" + range, "00002");

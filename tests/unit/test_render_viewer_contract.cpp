@@ -46,16 +46,17 @@ Outcome viewer(const std::string& options, const fs::path& dir, const std::strin
 TEST(ViewerContract, ScriptedRunsWithBadInputExitTwo) {
   const fs::path dir = test::render_scratch("viewer_bad");
   const fs::path shot = dir / "x.png";
-  const Outcome scene = viewer("--scene nosuch --frames 3 --screenshot '" + shot.string() + "'",
-                               dir, "scene");
+  const Outcome scene =
+      viewer("--scene nosuch --frames 3 --screenshot '" + shot.string() + "'", dir, "scene");
   EXPECT_EQ(scene.status, 2) << scene.output;
   EXPECT_NE(scene.output.find("unknown scene 'nosuch'"), std::string::npos) << scene.output;
   // A formula that does not build: the run cannot show it (the screenshot shows the panel's
   // red message).
-  const Outcome formula = viewer("--fresh --scene expr --implicit 'x^2+y^2+z^2+1' --bounds "
-                                 "-1,-1,-1,1,1,1 --frames 2 --screenshot '" +
-                                     shot.string() + "'",
-                                 dir, "formula");
+  const Outcome formula = viewer(
+      "--fresh --scene expr --implicit 'x^2+y^2+z^2+1' --bounds "
+      "-1,-1,-1,1,1,1 --frames 2 --screenshot '" +
+          shot.string() + "'",
+      dir, "formula");
   EXPECT_EQ(formula.status, 2) << formula.output;
   EXPECT_NE(formula.output.find("error shown: "), std::string::npos) << formula.output;
   EXPECT_NE(formula.output.find("no zero crossing"), std::string::npos) << formula.output;
@@ -71,9 +72,10 @@ TEST(ViewerContract, FramesCountAddsUp) {
 
 TEST(ViewerContract, ThresholdRefines) {
   const fs::path dir = test::render_scratch("viewer_threshold");
-  const Outcome fine = viewer("--fresh --scene sinc --t0 0.25 --frames 2 --threshold 0.004", dir, "fine");
-  const Outcome coarse = viewer("--fresh --scene sinc --t0 0.25 --frames 2 --threshold 0.016", dir,
-                                "coarse");
+  const Outcome fine =
+      viewer("--fresh --scene sinc --t0 0.25 --frames 2 --threshold 0.004", dir, "fine");
+  const Outcome coarse =
+      viewer("--fresh --scene sinc --t0 0.25 --frames 2 --threshold 0.016", dir, "coarse");
   ASSERT_EQ(fine.status, 0) << fine.output;
   ASSERT_EQ(coarse.status, 0) << coarse.output;
   EXPECT_GT(fine.triangles, 2.5 * coarse.triangles) << fine.output << coarse.output;
@@ -96,16 +98,16 @@ TEST(ViewerContract, EachSceneOpensAtItsOwnSettings) {
   const fs::path dir = test::render_scratch("viewer_scenes");
   const fs::path state = dir / "viewer.conf";
   // The person set T = 0.03 on sinc (saved at exit).
-  const Outcome sinc = viewer("--state '" + state.string() + "' --fresh --scene sinc "
-                              "--t0 0.25 --threshold 0.03 --frames 1",
+  const Outcome sinc = viewer("--state '" + state.string() +
+                                  "' --fresh --scene sinc "
+                                  "--t0 0.25 --threshold 0.03 --frames 1",
                               dir, "sinc");
   ASSERT_EQ(sinc.status, 0) << sinc.output;
   // Switching to sphere: the sphere's own settings, as a fresh start there.
   const Outcome sphere =
-      viewer("--state '" + state.string() + "' --scene sphere --t0 0.25 --frames 1", dir,
-             "sphere");
-  const Outcome sphere_fresh = viewer("--fresh --scene sphere --t0 0.25 --frames 1", dir,
-                                      "sphere_fresh");
+      viewer("--state '" + state.string() + "' --scene sphere --t0 0.25 --frames 1", dir, "sphere");
+  const Outcome sphere_fresh =
+      viewer("--fresh --scene sphere --t0 0.25 --frames 1", dir, "sphere_fresh");
   ASSERT_EQ(sphere.status, 0) << sphere.output;
   EXPECT_EQ(sphere.triangles, sphere_fresh.triangles);
   // Back to sinc: its T = 0.03 again.
