@@ -74,9 +74,10 @@ TEST(CliOutputs, FifoStaysAFifoAndRegularFilesAreAtomic) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   // A reader on the other end, as a user's `tail -f` or pipeline would be.
   std::thread reader([&] {
-    std::system(
-        ("cat " + test::shell_quoted(fifo.string()) + " > " + test::shell_quoted(copy.string()))
-            .c_str());
+    // (timeout: a run that failed before opening the FIFO must not hang the test)
+    std::system(("timeout 120 cat " + test::shell_quoted(fifo.string()) + " > " +
+                 test::shell_quoted(copy.string()))
+                    .c_str());
   });
   const CliRun r =
       run_cli({"--scene", "sinc", "--steps", "2", "--quiet", "--stats", fifo.string()});
