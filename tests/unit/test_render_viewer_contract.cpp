@@ -127,17 +127,19 @@ TEST(ViewerContract, EscapeQuitsAndSaves) {
   const fs::path dir = test::render_scratch("viewer_escape");
   const fs::path state = dir / "viewer.conf";
   // An interactive session (no --frames): a key press is the only way out here. The script
-  // starts the viewer, waits for its window, presses Esc and gives it 10 s to quit.
+  // starts the viewer, waits for its window and presses Esc every half second (a press that
+  // arrives before the first frame is drawn is not seen) for at most 30 s.
   const fs::path script = dir / "escape.sh";
   std::ofstream(script) << "'" << DYNAMESH_VIEWER << "' --state '" << state.string()
                         << "' --fresh --scene sinc --width 640 --height 480 &\n"
                         << "pid=$!\n"
                         << "w=$(xdotool search --sync --name dynamesh | head -1)\n"
-                        << "sleep 2\n"
-                        << "xdotool windowfocus --sync $w\n"
-                        << "xdotool key --window $w Escape\n"
-                        << "for i in $(seq 100); do kill -0 $pid 2>/dev/null || break; "
-                           "sleep 0.1; done\n"
+                        << "for i in $(seq 60); do\n"
+                        << "  kill -0 $pid 2>/dev/null || break\n"
+                        << "  xdotool windowfocus $w 2>/dev/null\n"
+                        << "  xdotool key --window $w Escape 2>/dev/null\n"
+                        << "  sleep 0.5\n"
+                        << "done\n"
                         << "if kill -0 $pid 2>/dev/null; then kill $pid; exit 9; fi\n"
                         << "wait $pid\n";
   const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' sh '" + script.string() +
