@@ -13,13 +13,13 @@
 #include "app/cli/run_summary.h"
 #include "app/offscreen/offscreen_render.h"
 #include "app/render/color_mode.h"
+#include "app/render/color_scale.h"
 #include "core/adapt/adapter.h"
 #include "core/adapt/workload_estimate.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
 #include "core/io/stats_csv.h"
 #include "core/io/vtk_export.h"
-#include "app/render/color_scale.h"
 
 namespace dynamesh {
 namespace {
@@ -296,8 +296,8 @@ void fail_if_left_behind(const RunOptions& o, const StepStats& s) {
   const double bound = o.adapt.threshold + o.adapt.epsilon;
   if (o.adapt.geometric || !(s.max_error > bound)) return;
   throw UsageError("--no-geometric: at step " + std::to_string(s.step) + " the mesh is " +
-                   format_number(s.max_error) + " from the surface, beyond T + eps = " +
-                   format_number(bound) +
+                   format_number(s.max_error) +
+                   " from the surface, beyond T + eps = " + format_number(bound) +
                    ": without vertex correction splits cannot follow a moving surface (use "
                    "--no-geometric on a static interval, e.g. --steps 0 or --t1 equal to --t0)");
 }

@@ -457,13 +457,9 @@ bool ViewerApp::save_settings() {
 
 int ViewerApp::finish_scripted(double seconds) {
   // What the run was asked to show could not be shown (a scene or formula that does not
-  // build): a scripted run says so and fails, as dynamesh-cli does, and writes no screenshot
-  // (a recording stops without being kept).
-  if (!error_.empty()) {
-    recorder_.cancel();
-    std::fprintf(stderr, "dynamesh: %s\n", error_.c_str());
-    return 2;
-  }
+  // build): the screenshot shows the panel's red message over the last good mesh, the
+  // recording is not kept, and the run fails with status 2, as dynamesh-cli does.
+  if (!error_.empty()) recorder_.cancel();
   if (!args_.screenshot.empty()) write_png(read_window(), args_.screenshot);
   std::string recorded;
   if (recorder_.recording()) {
@@ -481,11 +477,17 @@ int ViewerApp::finish_scripted(double seconds) {
               renderer_.n_triangles(),
               args_.screenshot.empty() ? "" : (", screenshot " + args_.screenshot).c_str(),
               recorded.c_str());
-  std::printf("dynamesh: scene %s, last step shown %llu (step 0 is the initialisation); uploads: "
-              "%d full, %d positions only, %d colour\n",
-              running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
-              up.geometry, up.scalar);
+  std::printf(
+      "dynamesh: scene %s, last step shown %llu (step 0 is the initialisation); uploads: "
+      "%d full, %d positions only, %d colour\n",
+      running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
+      up.geometry, up.scalar);
   std::printf("dynamesh: %s\n", describe(summarize(frames_, seconds)).c_str());
+  if (!error_.empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "dynamesh: error shown: %s\n", error_.c_str());
+    return 2;
+  }
   return 0;
 }
 

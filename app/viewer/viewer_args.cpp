@@ -144,7 +144,8 @@ std::string viewer_usage() {
                                   : settings_path()) +
          "\n  (--state FILE: another file; --fresh: start from the defaults)\n"
          "keys: space play/pause, arrows step, W wireframe, C colour mode, F fit, P screenshot,\n"
-         "      R record, H panel, Esc quit (settings saved).  mouse: left drag orbit, right/shift-left drag pan,\n"
+         "      R record, H panel, Esc quit (settings saved).  mouse: left drag orbit, "
+         "right/shift-left drag pan,\n"
          "      wheel zoom towards the cursor\n";
 }
 

@@ -122,20 +122,19 @@ void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) 
       suggested_t = scene.suggested_threshold;
       suggested_density = scene.suggested_density;
     }
-  bool changed = log_slider("threshold T", c.threshold, 0.01 * suggested_t, 100 * suggested_t,
-                            "%.4g");
+  bool changed =
+      log_slider("threshold T", c.threshold, 0.01 * suggested_t, 100 * suggested_t, "%.4g");
   // The band keeps its width relative to T (the CLI's default is T/4): T/100 with the old
   // absolute eps would leave no room to weld.
   if (c.threshold != before.threshold && before.threshold > 0)
     c.epsilon = before.epsilon * c.threshold / before.threshold;
   changed |= log_slider("epsilon", c.epsilon, 1e-3 * c.threshold, 0.99 * c.threshold, "%.4g");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("hysteresis half-width; follows T when T changes");
-  changed |= log_slider("density", c.density, 0.01 * suggested_density, 100 * suggested_density,
-                        "%.4g");
+  changed |=
+      log_slider("density", c.density, 0.01 * suggested_density, 100 * suggested_density, "%.4g");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per unit area (at least 9 per triangle)");
   const double k_lo = 0.0, k_hi = 10.0;
-  ImGui::SliderScalar("curvature sensitivity k", ImGuiDataType_Double, &c.k, &k_lo, &k_hi,
-                      "%.3g");
+  ImGui::SliderScalar("curvature sensitivity k", ImGuiDataType_Double, &c.k, &k_lo, &k_hi, "%.3g");
   changed |= ImGui::IsItemDeactivatedAfterEdit();
   ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
   ImGui::InputDouble("edge length", &c.edge_length, 0.01, 0.1, "%.4g", kOnEnter);

@@ -81,7 +81,7 @@ Special special_kind(const std::string& path) {
     if (ec || !fs::exists(link)) return Special::kNo;  // a new file
     if (!fs::is_symlink(link))
       return !fs::is_regular_file(link) && !fs::is_directory(link) ? Special::kInPlace
-                                                                     : Special::kNo;
+                                                                   : Special::kNo;
     const fs::path target = fs::read_symlink(p, ec);
     if (ec) return Special::kNo;
     p = target.is_absolute() ? target : p.parent_path() / target;

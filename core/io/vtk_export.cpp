@@ -51,8 +51,7 @@ void write_vtp(const std::string& path, const MeshSnapshot& mesh) {
   file.commit();
 }
 
-void write_pvd(const std::string& path,
-               const std::vector<std::pair<double, std::string>>& frames) {
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out.precision(10);

@@ -16,7 +16,6 @@ namespace dynamesh {
 void write_vtp(const std::string& path, const MeshSnapshot& mesh);
 
 // A collection: (time, file name relative to the .pvd) per frame, in order.
-void write_pvd(const std::string& path,
-               const std::vector<std::pair<double, std::string>>& frames);
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);
 
 }  // namespace dynamesh

@@ -89,8 +89,8 @@ inline CliRun run_cli(const std::vector<std::string>& args, const std::string& c
   r.err = slurp_file(stem + ".err");
   if (r.status == 0) {
     const auto start = r.out.rfind('{');
-    if (start != std::string::npos) r.json = nlohmann::json::parse(r.out.substr(start), nullptr,
-                                                                   false);
+    if (start != std::string::npos)
+      r.json = nlohmann::json::parse(r.out.substr(start), nullptr, false);
   }
   return r;
 }

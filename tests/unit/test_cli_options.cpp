@@ -13,9 +13,9 @@
 namespace dynamesh {
 namespace {
 
+using test::Args;
 using test::CliRun;
 using test::run_cli;
-using test::Args;
 using test::operator+;
 
 CliRun ok(const Args& args) {
@@ -29,8 +29,8 @@ CliRun ok(const Args& args) {
 Args scene(const std::string& name) {
   Args a{"--scene", name, "--steps", "2", "--t0", "0.2", "--t1", "0.3"};
   if (name == "expr")
-    a = a + Args{"--implicit", "x^2 + y^2/(1+0.5*sin(6.28*t)) + z^2 - 1", "--bounds",
-                 "-2,-2,-2,2,2,2"};
+    a = a +
+        Args{"--implicit", "x^2 + y^2/(1+0.5*sin(6.28*t)) + z^2 - 1", "--bounds", "-2,-2,-2,2,2,2"};
   return a;
 }
 
@@ -65,8 +65,8 @@ TEST(CliOptions, ThresholdOnMriInMillimetres) {
 
 TEST(CliOptions, EpsilonWidensTheBandSoFewerOperations) {
   // There and back over the sinc's rise: a narrow band welds what it split and splits again.
-  const Args run{"--scene", "sinc", "--keyframes", "0.2,0.3,0.2", "--steps", "8",
-                 "--threshold", "0.008"};
+  const Args run{"--scene", "sinc", "--keyframes", "0.2,0.3,0.2",
+                 "--steps", "8",    "--threshold", "0.008"};
   const CliRun narrow = ok(run + Args{"--epsilon", "0.0002"});
   const CliRun wide = ok(run + Args{"--epsilon", "0.006"});
   EXPECT_GT(narrow["welds"], 2 * wide["welds"]);
@@ -139,10 +139,9 @@ TEST(CliOptions, CurvatureSensitivityHoldsVerticesInCurvedRegions) {
 TEST(CliOptions, StatedDefaultsChangeNothing) {
   const Args run = scene("sinc") + Args{"--steps", "3"};
   const CliRun bare = ok(run);
-  const CliRun stated =
-      ok(run + Args{"--threshold", "0.008", "--epsilon", "0.002", "--density", "2000",
-                    "--seed", "1", "--k", "2", "--smooth-iters", "1", "--max-triangles",
-                    "2000000", "--export-every", "1"});
+  const CliRun stated = ok(run + Args{"--threshold", "0.008", "--epsilon", "0.002", "--density",
+                                      "2000", "--seed", "1", "--k", "2", "--smooth-iters", "1",
+                                      "--max-triangles", "2000000", "--export-every", "1"});
   for (const char* key : {"triangles", "vertices", "max_sample_error", "mean_sample_error",
                           "splits", "welds", "samples", "min_angle_deg", "mean_aspect_ratio"})
     EXPECT_EQ(bare[key], stated[key]) << key;
@@ -176,8 +175,8 @@ TEST(CliOptions, KeyframesSweepThereAndBack) {
 
 TEST(CliOptions, PeakAndWorstErrorCoverTheWholeRun) {
   // sinc from its peak amplitude (t = 0.25) to flat (t = 0.5): the last step is coarse.
-  const CliRun r = ok({"--scene", "sinc", "--steps", "4", "--t0", "0.25", "--t1", "0.5",
-                       "--stats", (test::cli_scratch("peak") / "s.csv").string()});
+  const CliRun r = ok({"--scene", "sinc", "--steps", "4", "--t0", "0.25", "--t1", "0.5", "--stats",
+                       (test::cli_scratch("peak") / "s.csv").string()});
   EXPECT_GT(r["peak_triangles"], 2.0 * r["triangles"]);
   EXPECT_EQ(r["peak_triangles_step"], 0);
   EXPECT_GE(r["worst_max_sample_error"], r["max_sample_error"]);
