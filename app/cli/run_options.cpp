@@ -44,7 +44,10 @@ const std::map<std::string, Setter>& valued_options() {
       {"--steps",
        [](RunOptions& o, auto& k, auto& v) { o.steps = static_cast<int>(parse_integer(k, v)); }},
       {"--threshold",
-       [](RunOptions& o, auto& k, auto& v) { o.adapt.threshold = parse_number(k, v); }},
+       [](RunOptions& o, auto& k, auto& v) {
+         o.adapt.threshold = parse_number(k, v);
+         o.threshold_given = true;  // else the scene's suggestion replaced it
+       }},
       {"--epsilon",
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.epsilon = parse_number(k, v);
@@ -54,6 +57,12 @@ const std::map<std::string, Setter>& valued_options() {
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.density = parse_number(k, v);
          o.density_given = true;
+       }},
+      {"--sampling",
+       [](RunOptions& o, auto&, auto& v) {
+         if (v != "predictive" && v != "full")
+           throw UsageError("--sampling must be predictive or full, got '" + v + "'");
+         o.adapt.sampling = v == "full" ? Sampling::kFull : Sampling::kPredictive;
        }},
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
@@ -222,6 +231,8 @@ Adaptation:
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
   --max-triangles M      refinement budget (reported when hit)  [2000000]
   --seed S               sample jitter seed  [1]
+  --sampling MODE        predictive: re-measure only faces whose error may have left the
+                         band since last measured; full: every face every step  [predictive]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
   --smooth-raw-curvature use raw curvature in Equation 1 (default: normalised to [0, 1])
