@@ -1,6 +1,7 @@
 #include "core/parallel.h"
 
 #include <cstdlib>
+#include <cstring>
 
 namespace dynamesh {
 namespace {
@@ -8,12 +9,15 @@ namespace {
 const char* g_policy = "default";
 
 // Runs from the executable's .preinit_array (see parallel.h): before libgomp reads its
-// environment. Only ever adds a variable; a user's own setting is kept.
-void choose_wait_policy(int, char**, char**) {
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) {
-    g_policy = "user";
-    return;
-  }
+// environment. Only ever adds a variable; a user's own setting is kept. The environment is
+// read from `envp`, which the loader passes (getenv may not see it this early).
+void choose_wait_policy(int, char**, char** envp) {
+  for (char** e = envp; e && *e; ++e)
+    if (std::strncmp(*e, "OMP_WAIT_POLICY=", 16) == 0 ||
+        std::strncmp(*e, "GOMP_SPINCOUNT=", 15) == 0) {
+      g_policy = "user";
+      return;
+    }
   if (setenv("OMP_WAIT_POLICY", "passive", 0) == 0) g_policy = "passive";
 }
 

@@ -48,7 +48,10 @@ void BM_StepUnderContention(benchmark::State& state, const std::string& name, do
   AdaptOptions o;
   o.threshold = threshold;
   o.epsilon = threshold / 4;
-  Adapter adapter(*surface, o, default_criteria(name, 0.0, o, 0.0));
+  double edge_length = 0.0;  // the sphere's multi-criteria half needs its L
+  for (const SurfaceParameter& p : surface->parameters())
+    if (p.name == "L") edge_length = p.value;
+  Adapter adapter(*surface, o, default_criteria(name, edge_length, o, 0.0));
   adapter.initialize();
   double t = 0.5;
   std::vector<double> quiet, busy;
