@@ -18,6 +18,10 @@ struct StepStats {
   std::size_t welds = 0;
   double max_error = 0.0, mean_error = 0.0;  // over all samples, after the step
   std::size_t samples = 0;
+  // Faces whose samples the sampling phase measured (all of them with full sampling; the
+  // rest kept their last error within a bound: predictive sampling, error_predictor.h),
+  // summed over the sub-steps.
+  std::size_t faces_measured = 0;
   std::size_t vertices_kept = 0;  // vertices alive before and after the step
   // Temporal coherence (DESIGN.md, "Quality bars"): vertices_kept over the vertices alive at
   // the start of the step (1 on a static surface; re-meshing would give 0), and how far the
