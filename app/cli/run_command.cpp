@@ -83,6 +83,18 @@ void log_step(std::ostream& log, const StepStats& s, int steps) {
   log.unsetf(std::ios::floatfield);
 }
 
+// Topology events (issue 16) on stderr whatever --quiet says: they change what the run means.
+void log_topology(std::ostream& log, const StepStats& s) {
+  for (const TopologyEvent& e : s.topology_events)
+    log << "topology: " << to_string(e.kind) << " at t=" << std::fixed << std::setprecision(4)
+        << e.time << " near (" << std::setprecision(3) << e.position.x() << ", "
+        << e.position.y() << ", " << e.position.z() << ")\n";
+  if (s.rebuilt)
+    log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
+        << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";
+  log.unsetf(std::ios::floatfield);
+}
+
 // What a snapshot must carry for the chosen colour mode.
 SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
   SnapshotFields f;
@@ -160,6 +172,10 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     summary.total_splits += s.splits;
     summary.total_welds += s.welds;
     summary.budget_hit = summary.budget_hit || s.budget_hit;
+    summary.topology_events.insert(summary.topology_events.end(), s.topology_events.begin(),
+                                   s.topology_events.end());
+    summary.rebuilds += s.rebuilt;
+    log_topology(log, s);
     if (csv) csv->write(s, summary.total_splits, summary.total_welds);
     if (!o.quiet) log_step(log, s, o.steps);
     if (o.check) {

@@ -33,7 +33,15 @@ std::string to_json(const RunSummary& s) {
       << ",\"vertices_kept\":" << l.vertices_kept
       << ",\"kept_fraction\":" << number(l.kept_fraction)
       << ",\"survivor_displacement_mean\":" << number(l.survivor_displacement_mean)
-      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false") << "}";
+      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
+      << ",\"rebuilds\":" << s.rebuilds << ",\"topology_events\":[";
+  for (std::size_t i = 0; i < s.topology_events.size(); ++i) {
+    const TopologyEvent& e = s.topology_events[i];
+    out << (i ? "," : "") << "{\"time\":" << number(e.time) << ",\"kind\":\"" << to_string(e.kind)
+        << "\",\"position\":[" << number(e.position.x()) << ',' << number(e.position.y()) << ','
+        << number(e.position.z()) << "]}";
+  }
+  out << "]}";
   return out.str();
 }
 

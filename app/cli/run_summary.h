@@ -16,6 +16,8 @@ struct RunSummary {
   double seconds_per_step_median = 0.0;
   MeshQuality quality;
   bool budget_hit = false;  // in any step
+  std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
+  std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
 };
 
 std::string to_json(const RunSummary& s);

@@ -30,6 +30,9 @@ struct AdaptOptions {
   std::size_t max_triangles = 2'000'000;  // refinement stops at this budget (reported)
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
+  // Watch F for merges, splits and pinches and rebuild the mesh when its topology no longer
+  // matches (surfaces that say they may change topology; core/topology/topology_events.h).
+  bool topology_events = true;
   SmoothingOptions smoothing;
   AngleGuard angle_guard;
 };

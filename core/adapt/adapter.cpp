@@ -117,6 +117,7 @@ const StepStats& Adapter::initialize() {
   tracker_->current_step = 0;
   tracker_->grow(mesh_);
   samples_.reset(mesh_);
+  watch_topology();
   stats_.seconds.project = clock.lap();
   samples_.evaluate_all(mesh_, probe_);
   stats_.seconds.sample = clock.lap();
@@ -144,6 +145,7 @@ const StepStats& Adapter::step(double t) {
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
   vertices_at_start_ = mesh_.n_vertices();
+  if (topology_) check_topology();
   const bool correct = options_.geometric && surface_changed();
   if (correct) normal_correction();
   stats_.seconds.project = clock.lap();
@@ -157,6 +159,18 @@ const StepStats& Adapter::step(double t) {
   stats_.seconds.split = clock.lap();
   finish_stats();
   return stats_;
+}
+
+void Adapter::rebuild_from_base() {
+  // As initialize() does, but within a step: every vertex is born now (none survives).
+  mesh_ = surface_.base_mesh();
+  mesh_.add_listener(tracker_.get());
+  mesh_.add_listener(&samples_);
+  tracker_->grow(mesh_);
+  for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
+  samples_.reset(mesh_);
+  samples_.evaluate_all(mesh_, probe_);
+  if (options_.structural) split_pass(true);
 }
 
 bool Adapter::surface_changed() {

@@ -28,6 +28,8 @@
 
 namespace dynamesh {
 
+class TopologyMonitor;
+
 // Per-vertex fields a snapshot can carry (each costs time; curvature the most).
 struct SnapshotFields {
   bool error = true;       // mean sampled error of the incident faces
@@ -81,6 +83,12 @@ class Adapter {
   bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
   void record_rest_points();
+  // Topology change (issue 16, topology_events.h): starts watching F when the surface may
+  // change topology; each step, reports F's events and rebuilds the mesh from F's contour when
+  // its topology no longer matches (a global re-base: no vertex survives it).
+  void watch_topology();
+  void check_topology();
+  void rebuild_from_base();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 
@@ -102,6 +110,7 @@ class Adapter {
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
+  std::unique_ptr<TopologyMonitor> topology_;
 };
 
 }  // namespace dynamesh

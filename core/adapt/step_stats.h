@@ -3,6 +3,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
+
+#include "core/topology/topology_event.h"
 
 namespace dynamesh {
 
@@ -30,6 +33,12 @@ struct StepStats {
   std::size_t splits_refused = 0, pathological_welds = 0;
   std::size_t projection_failures = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  // Topology (issue 16; surfaces that may change topology): events found from F during the
+  // step, whether the mesh was rebuilt from F's contour (no vertex survives a rebuild), and
+  // what watching cost (seconds; also counted in seconds.project).
+  std::vector<TopologyEvent> topology_events;
+  bool rebuilt = false;
+  double topology_seconds = 0.0;
   PhaseSeconds seconds;
 };
 
