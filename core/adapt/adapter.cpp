@@ -10,6 +10,7 @@
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/topology/topology_events.h"
 
 namespace dynamesh {
 namespace {
@@ -150,6 +151,7 @@ const StepStats& Adapter::step(double t) {
   if (correct) normal_correction();
   stats_.seconds.project = clock.lap();
   if (correct) tangential_correction();
+  if (correct && topology_) repair_folds();
   stats_.seconds.smooth = clock.lap();
   sampling();
   stats_.seconds.sample = clock.lap();

@@ -88,6 +88,9 @@ class Adapter {
   // its topology no longer matches (a global re-base: no vertex survives it).
   void watch_topology();
   void check_topology();
+  // After the geometric correction: rebuilds when it turned a face against grad F (next to an
+  // event the surface moves fast and coarse contoured triangles fold).
+  void repair_folds();
   void rebuild_from_base();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();

@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "core/adapt/adapter.h"
+#include "core/parallel.h"
 #include "core/topology/topology_events.h"
 
 namespace dynamesh {
@@ -26,6 +27,30 @@ void Adapter::check_topology() {
   rebuild_from_base();
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
+  stats_.topology_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Adapter::repair_folds() {
+  const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
+  const auto n = static_cast<std::int64_t>(mesh_.face_capacity());
+  std::size_t folded = 0;
+#pragma omp parallel for schedule(static) reduction(+ : folded) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh_.is_alive(f)) continue;
+    const auto v = mesh_.vertices(f);
+    const Vec3 &a = mesh_.position(v[0]), &b = mesh_.position(v[1]), &c = mesh_.position(v[2]);
+    Vec3 g;
+    implicit.value_gradient((a + b + c) / 3.0, g);
+    folded += !((b - a).cross(c - a).dot(g) > 0);
+  }
+  if (folded == 0) return;
+  const auto start = std::chrono::steady_clock::now();
+  rebuild_from_base();
+  topology_->mesh_rebuilt(mesh_);
+  stats_.rebuilt = true;
+  stats_.folds_repaired = folded;
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

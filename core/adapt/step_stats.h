@@ -38,6 +38,7 @@ struct StepStats {
   // what watching cost (seconds; also counted in seconds.project).
   std::vector<TopologyEvent> topology_events;
   bool rebuilt = false;
+  std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
   double topology_seconds = 0.0;
   PhaseSeconds seconds;
 };

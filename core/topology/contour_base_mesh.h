@@ -22,12 +22,14 @@ struct ContourBaseOptions {
 struct ContourBaseInfo {
   std::size_t contour_triangles = 0;  // from marching tetrahedra
   std::size_t unpaired = 0;           // left by the matching (then Velho's construction)
+  std::size_t unprojected = 0;        // vertices left at their contour position
   double spacing = 0.0;
 };
 
 // Throws std::invalid_argument when F has no zero crossing on the grid, is negative on the
-// bounds' sides, or a contour vertex does not project onto F = 0.
-Mesh48 make_contour_base_mesh(const ImplicitSurface& surface, const ContourBaseOptions& options = {},
+// bounds' sides, or no contour vertex projects onto F = 0.
+Mesh48 make_contour_base_mesh(const ImplicitSurface& surface,
+                              const ContourBaseOptions& options = {},
                               ContourBaseInfo* info = nullptr);
 
 }  // namespace dynamesh

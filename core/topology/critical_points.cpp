@@ -28,17 +28,15 @@ bool newton_critical(const ImplicitSurface& surface, const Vec3& start, const Bo
     const Vec3 lambda = eigen.eigenvalues();
     const double scale = lambda.cwiseAbs().maxCoeff();
     if (!(scale > 0) || lambda.cwiseAbs().minCoeff() < 1e-6 * scale) return false;  // degenerate
-    const Vec3 step = eigen.eigenvectors() *
-                      (eigen.eigenvectors().transpose() * g).cwiseQuotient(lambda);
+    const Vec3 step =
+        eigen.eigenvectors() * (eigen.eigenvectors().transpose() * g).cwiseQuotient(lambda);
     x -= step;
     if (!contains(region, x) || !x.allFinite()) return false;
     if (step.norm() < tolerance) {
       out.position = x;
       out.value = surface.value(x);
-      out.index = static_cast<int>((surface.hessian(x).selfadjointView<Eigen::Lower>()
-                                        .eigenvalues()
-                                        .array() < 0)
-                                       .count());
+      out.index = static_cast<int>(
+          (surface.hessian(x).selfadjointView<Eigen::Lower>().eigenvalues().array() < 0).count());
       return true;
     }
   }

@@ -62,11 +62,13 @@ class Extractor {
   // The contour vertex on grid edge (a, b), a inside and b outside; one per edge.
   std::uint32_t crossing(std::uint64_t a, std::uint64_t b) {
     const std::uint64_t key = std::min(a, b) * values_.size() + std::max(a, b);
-    const auto [it, fresh] = vertex_of_.emplace(key, static_cast<std::uint32_t>(out_.positions.size()));
+    const auto [it, fresh] =
+        vertex_of_.emplace(key, static_cast<std::uint32_t>(out_.positions.size()));
     if (fresh) {
       const double fa = values_[a], fb = values_[b];
       const double s = std::clamp(fa / (fa - fb), margin_, 1.0 - margin_);
       out_.positions.push_back((1.0 - s) * position(a) + s * position(b));
+      out_.edges.push_back({position(a), position(b)});
     }
     return it->second;
   }

@@ -19,7 +19,7 @@
 namespace dynamesh {
 
 struct ContourGrid {
-  Box3 box;                        // the grid spans it, corners included
+  Box3 box;                           // the grid spans it, corners included
   std::array<int, 3> cells{1, 1, 1};  // cubes along each axis
   Vec3 spacing() const;
   Vec3 point(int i, int j, int k) const;
@@ -29,6 +29,8 @@ struct ContourGrid {
 struct ContourMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
+  // The grid edge each vertex lies on: its inside end (F < 0) and outside end.
+  std::vector<std::array<Vec3, 2>> edges;
 };
 
 // Cells of about `spacing` over `box`, at least 2 along each axis.

@@ -23,9 +23,12 @@ struct Components {
 // i-handle to the inside {F < 0}; increasing, removes one.
 TopologyEventKind kind_of(int index, bool going_negative) {
   switch (index) {
-    case 0: return going_negative ? TopologyEventKind::kBirth : TopologyEventKind::kDeath;
-    case 1: return going_negative ? TopologyEventKind::kMerge : TopologyEventKind::kSplit;
-    case 2: return going_negative ? TopologyEventKind::kHoleCloses : TopologyEventKind::kHoleOpens;
+    case 0:
+      return going_negative ? TopologyEventKind::kBirth : TopologyEventKind::kDeath;
+    case 1:
+      return going_negative ? TopologyEventKind::kMerge : TopologyEventKind::kSplit;
+    case 2:
+      return going_negative ? TopologyEventKind::kHoleCloses : TopologyEventKind::kHoleOpens;
     default:  // a maximum: a bubble of outside inside the solid vanishes or appears
       return going_negative ? TopologyEventKind::kDeath : TopologyEventKind::kBirth;
   }
@@ -35,13 +38,20 @@ TopologyEventKind kind_of(int index, bool going_negative) {
 
 const char* to_string(TopologyEventKind kind) {  // declared in topology_event.h
   switch (kind) {
-    case TopologyEventKind::kBirth: return "birth";
-    case TopologyEventKind::kDeath: return "death";
-    case TopologyEventKind::kMerge: return "merge";
-    case TopologyEventKind::kSplit: return "split";
-    case TopologyEventKind::kHoleCloses: return "hole-closes";
-    case TopologyEventKind::kHoleOpens: return "hole-opens";
-    case TopologyEventKind::kMismatch: return "mismatch";
+    case TopologyEventKind::kBirth:
+      return "birth";
+    case TopologyEventKind::kDeath:
+      return "death";
+    case TopologyEventKind::kMerge:
+      return "merge";
+    case TopologyEventKind::kSplit:
+      return "split";
+    case TopologyEventKind::kHoleCloses:
+      return "hole-closes";
+    case TopologyEventKind::kHoleOpens:
+      return "hole-opens";
+    case TopologyEventKind::kMismatch:
+      return "mismatch";
   }
   return "?";
 }
@@ -125,8 +135,7 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   out.rebase = !(out.contour == mesh_topology_);
   if (out.rebase && out.events.empty())
     out.events.push_back({t1, grid.box.center(), TopologyEventKind::kMismatch});
-  out.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

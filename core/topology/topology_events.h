@@ -38,9 +38,9 @@ MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_
 
 struct TopologyCheck {
   std::vector<TopologyEvent> events;
-  bool rebase = false;            // the contour's topology differs from the mesh's
-  MeshTopologySummary contour;    // of F's zero set on the grid, now
-  double seconds = 0.0;           // what the check cost
+  bool rebase = false;          // the contour's topology differs from the mesh's
+  MeshTopologySummary contour;  // of F's zero set on the grid, now
+  double seconds = 0.0;         // what the check cost
 };
 
 class TopologyMonitor {

@@ -22,8 +22,7 @@ std::vector<SharedEdge> shared_edges(const std::vector<Vec3>& positions,
   face_of.reserve(3 * triangles.size());
   for (std::uint32_t f = 0; f < triangles.size(); ++f)
     for (int i = 0; i < 3; ++i) {
-      const std::uint64_t key =
-          (std::uint64_t{triangles[f][i]} << 32) | triangles[f][(i + 1) % 3];
+      const std::uint64_t key = (std::uint64_t{triangles[f][i]} << 32) | triangles[f][(i + 1) % 3];
       if (!face_of.emplace(key, f).second)
         throw std::invalid_argument(
             "pairing: an edge is used twice in the same direction (non-manifold or "
@@ -47,8 +46,9 @@ std::vector<SharedEdge> shared_edges(const std::vector<Vec3>& positions,
 
 }  // namespace
 
-std::vector<std::int64_t> pair_triangles(const std::vector<Vec3>& positions,
-                                         const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+std::vector<std::int64_t> pair_triangles(
+    const std::vector<Vec3>& positions,
+    const std::vector<std::array<std::uint32_t, 3>>& triangles) {
   const std::vector<SharedEdge> edges = shared_edges(positions, triangles);
   using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS>;
   using GraphVertex = boost::graph_traits<Graph>::vertex_descriptor;

@@ -19,7 +19,7 @@ namespace dynamesh {
 // partner[f] is the triangle paired with f, or -1 when f is left unpaired (only possible on
 // an open mesh or a component with an odd number of triangles). Throws std::invalid_argument
 // for non-manifold or inconsistently oriented input.
-std::vector<std::int64_t> pair_triangles(const std::vector<Vec3>& positions,
-                                         const std::vector<std::array<std::uint32_t, 3>>& triangles);
+std::vector<std::int64_t> pair_triangles(
+    const std::vector<Vec3>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles);
 
 }  // namespace dynamesh

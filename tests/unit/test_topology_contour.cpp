@@ -15,6 +15,7 @@
 #include "core/topology/marching_tetrahedra.h"
 #include "core/topology/triangle_pairing.h"
 #include "dense_error.h"
+#include "tests/support/mesh_validity.h"
 #include "topology_measure.h"
 
 namespace dynamesh {
@@ -25,25 +26,25 @@ struct Shape {
   long components, euler;
 };
 
-const Shape kTorus{"torus", "(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09", "-1.5,-1.5,-0.5,1.5,1.5,0.5", 1,
-                   0};
+const Shape kTorus{"torus", "(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09", "-1.5,-1.5,-0.5,1.5,1.5,0.5", 1, 0};
 // A tube around Gerono's figure eight y^2 = x^2 (1 - x^2): two holes.
 const Shape kDoubleTorus{"double torus", "(y^2 - x^2*(1-x^2))^2 + z^2 - 0.03",
                          "-1.3,-0.8,-0.4,1.3,0.8,0.4", 1, -2};
-const Shape kTwoSpheres{"two spheres",
-                        "((x-0.8)^2+y^2+z^2-0.25)*((x+0.8)^2+y^2+z^2-0.25)",
+const Shape kTwoSpheres{"two spheres", "((x-0.8)^2+y^2+z^2-0.25)*((x+0.8)^2+y^2+z^2-0.25)",
                         "-1.5,-0.7,-0.7,1.5,0.7,0.7", 2, 4};
 
 std::unique_ptr<Surface> typed(const Shape& s) {
   return make_scene("expr", {}, {{"implicit", s.formula}, {"bounds", s.bounds}});
 }
 
+void expect_embedded(const test::MeshValidity& v, const Shape& s, const std::string& when) {
+  EXPECT_EQ(v.components, s.components) << s.name << " " << when;
+  EXPECT_EQ(v.euler(), s.euler) << s.name << " " << when;
+  EXPECT_TRUE(v.embedded_closed_manifold()) << s.name << " " << when << ": " << v.describe();
+}
+
 void expect_closed_manifold(const Mesh48& mesh, const Shape& s, const std::string& when) {
-  const test::MeshTopology topo = test::mesh_topology(mesh);
-  EXPECT_EQ(topo.components, s.components) << s.name << " " << when;
-  EXPECT_EQ(topo.euler, s.euler) << s.name << " " << when;
-  EXPECT_EQ(topo.bad_edges, 0) << s.name << " " << when;
-  EXPECT_EQ(topo.bad_vertices, 0) << s.name << " " << when;
+  expect_embedded(test::check_mesh_validity(mesh), s, when);
   const CheckReport report = mesh.check();
   EXPECT_TRUE(report.ok()) << s.name << " " << when << ": " << report.summary();
 }
@@ -66,11 +67,7 @@ TEST(TopologyContour, MarchingTetrahedraGivesAClosedOrientedManifold) {
     const auto& F = dynamic_cast<const ImplicitSurface&>(*surface);
     const ContourGrid grid = make_contour_grid(F.bounds(), F.bounds().size().maxCoeff() / 24);
     const ContourMesh contour = marching_tetrahedra(grid, sample_grid(F, grid));
-    const test::MeshTopology topo = test::mesh_topology(contour.triangles);
-    EXPECT_EQ(topo.components, s.components) << s.name;
-    EXPECT_EQ(topo.euler, s.euler) << s.name;
-    EXPECT_EQ(topo.bad_edges, 0) << s.name;
-    EXPECT_EQ(topo.bad_vertices, 0) << s.name;
+    expect_embedded(test::check_mesh_validity(contour.positions, contour.triangles), s, "contour");
     // Pairing: a perfect matching on every closed component (Petersen).
     const auto partner = pair_triangles(contour.positions, contour.triangles);
     for (std::size_t f = 0; f < partner.size(); ++f) {

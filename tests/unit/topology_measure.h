@@ -1,73 +1,20 @@
-// Independent topology of a mesh and of an implicit solid, for the topology tests (issue 16):
-//  - of a mesh, from its plain triangle list only: components (vertices joined by edges),
-//    Euler characteristic, and whether it is a closed, oriented 2-manifold (every edge used
-//    once in each direction, every vertex's faces one fan closing on itself);
-//  - of the solid F < 0, from a fine voxel grid: its 6-connected components flood-filled, and
-//    the Euler characteristic of the union of its closed voxels, V - E + F - C, whose boundary
-//    surface has twice that characteristic. Nothing here reads the mesh's links or the
-//    engine's contouring.
+// Independent topology of an implicit solid, for the topology tests (issue 16): of F < 0 on a
+// fine voxel grid, its 6-connected components flood-filled, and the Euler characteristic of the
+// union of its closed voxels, V - E + F - C, whose boundary surface has twice that
+// characteristic. Nothing here reads the mesh or the engine's contouring (the mesh's own
+// topology comes from tests/support/mesh_validity.h).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
-#include <map>
-#include <numeric>
 #include <vector>
 
 #include "core/geometry/vector_types.h"
-#include "mesh_measure.h"
 
 namespace dynamesh::test {
-
-struct MeshTopology {
-  long components = 0;
-  long euler = 0;
-  long bad_edges = 0;     // used other than once in each direction
-  long bad_vertices = 0;  // faces around the vertex not one closed fan
-};
-
-inline MeshTopology mesh_topology(const std::vector<Triple>& tris) {
-  MeshTopology out;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (const auto& t : tris)
-    for (int i = 0; i < 3; ++i) ++directed[{t[i], t[(i + 1) % 3]}];
-  for (const auto& [e, n] : directed)
-    if (n != 1 || !directed.count({e.second, e.first})) ++out.bad_edges;
-  long undirected = 0;
-  for (const auto& [e, n] : directed)
-    undirected += e.first < e.second || !directed.count({e.second, e.first});
-  // Components by union-find over the edges.
-  std::map<std::uint32_t, std::uint32_t> parent;
-  std::function<std::uint32_t(std::uint32_t)> find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& t : tris)
-    for (auto v : t) parent.emplace(v, v);
-  for (const auto& t : tris)
-    for (int i = 0; i < 3; ++i) parent[find(t[i])] = find(t[(i + 1) % 3]);
-  for (const auto& [v, p] : parent) out.components += find(v) == v;
-  out.euler = static_cast<long>(parent.size()) - undirected + static_cast<long>(tris.size());
-  // Each vertex: follow next[a] = b over its faces (v, a, b); one cycle through all of them.
-  std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> fan;
-  for (const auto& t : tris)
-    for (int i = 0; i < 3; ++i) fan[t[i]][t[(i + 1) % 3]] = t[(i + 2) % 3];
-  for (const auto& [v, next] : fan) {
-    std::size_t steps = 0;
-    std::uint32_t a = next.begin()->first;
-    do {
-      const auto it = next.find(a);
-      if (it == next.end()) break;
-      a = it->second;
-      ++steps;
-    } while (a != next.begin()->first && steps <= next.size());
-    if (a != next.begin()->first || steps != next.size()) ++out.bad_vertices;
-  }
-  return out;
-}
-
-inline MeshTopology mesh_topology(const Mesh48& mesh) { return mesh_topology(triangle_list(mesh)); }
 
 struct SolidTopology {
   long components = 0;
