@@ -5,7 +5,6 @@
 #include <cmath>
 #include <tuple>
 
-#include "core/parallel.h"
 
 namespace dynamesh {
 
@@ -60,7 +59,6 @@ GridField sample_field(const ImplicitSurface& surface, const ContourGrid& grid) 
   GridField field;
   field.values.resize(static_cast<std::size_t>(n));
   field.gradients.resize(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::int64_t q = 0; q < n; ++q) {
     const int i = static_cast<int>(q % (nx + 1)), j = static_cast<int>(q / (nx + 1) % (ny + 1));
     const int k = static_cast<int>(q / (static_cast<std::int64_t>(nx + 1) * (ny + 1)));

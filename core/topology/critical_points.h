@@ -21,7 +21,9 @@ struct CriticalPoint {
   int index = 0;       // negative eigenvalues of the Hessian: 0 minimum, 1 and 2 saddles, 3 maximum
 };
 
-// F and grad F at every grid point (x fastest), sampled in parallel.
+// F and grad F at every grid point (x fastest). Serial on purpose: a coarse grid of a few
+// thousand points costs well under a millisecond, and an OpenMP region on busy cores cost
+// 100 times that (measured 0.65 ms serial vs 66 ms with two threads on blobs).
 struct GridField {
   std::vector<double> values;
   std::vector<Vec3> gradients;

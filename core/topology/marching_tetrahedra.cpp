@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "core/parallel.h"
 
 namespace dynamesh {
 
@@ -140,7 +139,6 @@ std::vector<double> sample_grid(const ImplicitSurface& surface, const ContourGri
   const auto [nx, ny, nz] = grid.cells;
   const std::int64_t n = static_cast<std::int64_t>(nx + 1) * (ny + 1) * (nz + 1);
   std::vector<double> values(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::int64_t id = 0; id < n; ++id) {
     const int i = static_cast<int>(id % (nx + 1));
     const int j = static_cast<int>(id / (nx + 1) % (ny + 1));

@@ -36,7 +36,7 @@ struct ContourMesh {
 // Cells of about `spacing` over `box`, at least 2 along each axis.
 ContourGrid make_contour_grid(const Box3& box, double spacing);
 
-// F sampled at every grid point (x fastest), in parallel.
+// F sampled at every grid point (x fastest); serial, like sample_field (critical_points.h).
 std::vector<double> sample_grid(const ImplicitSurface& surface, const ContourGrid& grid);
 
 // The zero set of the sampled values (size (cells+1)^3, x fastest). A crossing is placed by
