@@ -66,6 +66,15 @@ class Adapter {
  private:
   class Tracker;
 
+  // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
+  // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
+  // Returns whether the surface had changed (and the vertices were corrected).
+  bool advance(double t, bool rest_points_fresh);
+  // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
+  int plan_substeps(double from, double to);
+  void repair(const FoldRepairOptions& options);
+  // Checks the frame about to be published for folds and slivers; repairs and re-measures.
+  void publish_repaired();
   void normal_correction();
   void tangential_correction();
   void sampling();
@@ -88,9 +97,9 @@ class Adapter {
   // its topology no longer matches (a global re-base: no vertex survives it).
   void watch_topology();
   void check_topology();
-  // After the geometric correction: rebuilds when it turned a face against grad F (next to an
-  // event the surface moves fast and coarse contoured triangles fold).
-  void repair_folds();
+  // After the geometric correction and its fold repair: rebuilds when faces are still turned
+  // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
+  void rebuild_if_folded();
   void rebuild_from_base();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
@@ -113,6 +122,8 @@ class Adapter {
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
+  std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
+  std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 
