@@ -44,6 +44,9 @@ struct AdaptOptions {
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
   Sampling sampling = Sampling::kPredictive;
+  // Watch F for merges, splits and pinches and rebuild the mesh when its topology no longer
+  // matches (surfaces that say they may change topology; core/topology/topology_events.h).
+  bool topology_events = true;
   SmoothingOptions smoothing;
   AngleGuard angle_guard;
   // Every frame embedded and well shaped, whatever the step size (DESIGN.md, "Quality bars"):

@@ -10,6 +10,7 @@
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/topology/topology_events.h"
 
 namespace dynamesh {
 namespace {
@@ -136,6 +137,7 @@ const StepStats& Adapter::initialize() {
     split_pass(false);
     stats_.seconds.split += clock.lap();
   }
+  watch_topology();
   publish_repaired();
   finish_stats();
   return stats_;
@@ -181,11 +183,13 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   PhaseSeconds& seconds = stats_.seconds;
   if (options_.geometric && probe_.follows_material() && !rest_points_fresh) record_rest_points();
   surface_.set_time(t);
+  if (topology_) check_topology();
   const bool correct = options_.geometric && surface_changed();
   if (correct) normal_correction();
   seconds.project += clock.lap();
   if (correct) tangential_correction();
   if (correct) repair(options_.fold_repair);
+  if (correct && topology_) rebuild_if_folded();
   seconds.smooth += clock.lap();
   sampling();
   seconds.sample += clock.lap();
@@ -228,6 +232,18 @@ void Adapter::publish_repaired() {
   stats_.seconds.sample += clock.lap();
   if (options_.structural) split_pass(false);
   stats_.seconds.split += clock.lap();
+}
+
+void Adapter::rebuild_from_base() {
+  // As initialize() does, but within a step: every vertex is born now (none survives).
+  mesh_ = surface_.base_mesh();
+  mesh_.add_listener(tracker_.get());
+  mesh_.add_listener(&samples_);
+  tracker_->grow(mesh_);
+  for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
+  samples_.reset(mesh_);
+  samples_.evaluate_all(mesh_, probe_);
+  if (options_.structural) split_pass(true);
 }
 
 bool Adapter::surface_changed() {

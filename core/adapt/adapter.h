@@ -29,6 +29,8 @@
 
 namespace dynamesh {
 
+class TopologyMonitor;
+
 // Per-vertex fields a snapshot can carry (each costs time; curvature the most).
 struct SnapshotFields {
   bool error = true;       // mean sampled error of the incident faces
@@ -105,6 +107,15 @@ class Adapter {
   bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
   void record_rest_points();
+  // Topology change (issue 16, topology_events.h): starts watching F when the surface may
+  // change topology; each step, reports F's events and rebuilds the mesh from F's contour when
+  // its topology no longer matches (a global re-base: no vertex survives it).
+  void watch_topology();
+  void check_topology();
+  // After the geometric correction and its fold repair: rebuilds when faces are still turned
+  // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
+  void rebuild_if_folded();
+  void rebuild_from_base();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 
@@ -131,6 +142,7 @@ class Adapter {
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
   std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
+  std::unique_ptr<TopologyMonitor> topology_;
 };
 
 }  // namespace dynamesh

@@ -3,6 +3,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
+
+#include "core/topology/topology_event.h"
 
 namespace dynamesh {
 
@@ -44,6 +47,13 @@ struct StepStats {
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
   bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
   bool time_budget_hit = false;    // ... at AdaptOptions::deadline
+  // Topology (issue 16; surfaces that may change topology): events found from F during the
+  // step, whether the mesh was rebuilt from F's contour (no vertex survives a rebuild), and
+  // what watching cost (seconds; also counted in seconds.project).
+  std::vector<TopologyEvent> topology_events;
+  bool rebuilt = false;
+  std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
+  double topology_seconds = 0.0;
   PhaseSeconds seconds;
 };
 
