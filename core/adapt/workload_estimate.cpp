@@ -149,10 +149,10 @@ WorkloadEstimate implicit_workload(const ImplicitSurface& s, int n) {
           }
           const Vec3 normal = g.normalized();
           const double weight = normal.cwiseAbs().sum();
-          if (!(weight > 0)) {
-            w.problem = "the gradient of F is zero on the surface near " + where(p);
-            break;
-          }
+          // A crossing on a critical point of F (where the level set merges, splits or
+          // pinches: the torus pinch at t = 0.5) has no normal; it is one point of the
+          // surface, so it adds nothing to the area.
+          if (!(weight > 0)) continue;
           // Every crossing stands for cell_area / |n_axis| of the surface; summed over the
           // three axes that counts each piece (|n_x| + |n_y| + |n_z|) times.
           const double da = cell_area[axis] / weight;

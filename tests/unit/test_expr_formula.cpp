@@ -287,10 +287,8 @@ TEST(ExprFormula, BaseMeshFarFromTheSurfaceOrFoldedIsRejected) {
                          {"bounds", "-2,-2,-2,2,2,2"},
                          {"base-mesh", torus}}),
                    "folds over");
-  // A torus formula without a base mesh: the box cannot be placed on it.
-  EXPECT_ERROR_HAS(
-      expr({{"implicit", "sqrt((sqrt(x^2+y^2)-1)^2+z^2) - 0.4"}, {"bounds", "-2,-2,-1,2,2,1"}}),
-      "--base-mesh FILE");
+  // (A torus formula without a base mesh is no longer refused: it is contoured from F,
+  // tests/unit/test_topology_contour.cpp.)
 }
 
 }  // namespace
