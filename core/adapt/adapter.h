@@ -1,7 +1,7 @@
 // Adapter: keeps a 4-8 mesh adapted to a deforming surface S(t) (de Goes et al. 2006).
 // Each step, in this order (DESIGN.md): normal correction (vertices onto S(t)), tangential
 // correction (Equation 1), sampling (every sample's error), welds of every vertex whose
-// post-weld error is below T - eps (smallest first, cascading), then splits of every edge
+// post-weld error is below T (criteria.h; smallest first, cascading), then splits of every edge
 // whose diamond's error is above T + eps (largest first). The mesh at the end of a step is
 // the one that was measured.
 //
