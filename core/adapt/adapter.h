@@ -67,6 +67,7 @@ class Adapter {
   // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
   // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
   // Returns whether the surface had changed (and the vertices were corrected).
+  const StepStats& initialize_here();
   bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
   int plan_substeps(double from, double to);

@@ -209,6 +209,27 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
   fs::remove_all(dir);
 }
 
+// A still frame at an extreme time, initialised there: twist with 3 turns at t = 1. Refined
+// directly from its twisted base mesh it was not embedded (T = 0.002: 1.67M self-intersecting
+// pairs, smallest angle 0.72 degrees; T = 0.004: 851 690 pairs, 1.01 degrees); the adapter now
+// adapts the untwisted bar (Surface::mild_time) and follows the twist to t = 1 before the first
+// frame is published.
+TEST(MotionFrames, TwistInitialisedAtThreeTurns) {
+  std::unique_ptr<Surface> surface = make_scene("twist", {{"turns", 3.0}});
+  surface->set_time(1.0);
+  AdaptOptions options;
+  options.threshold = 0.004;
+  options.epsilon = options.threshold / 4;
+  options.density = 2000.0;
+  MotionRun run{std::move(surface), nullptr, options};
+  run.adapter = std::make_unique<Adapter>(*run.surface, options,
+                                          default_criteria("twist", 0.0, options, 0.0));
+  const StepStats& stats = run.adapter->initialize();
+  EXPECT_EQ(run.surface->time(), 1.0);
+  EXPECT_EQ(stats.step, 0);
+  expect_frame_ok(run, {10.0, true, 4.0 * options.density}, "twist initialised at t = 1");
+}
+
 // --- return to start --------------------------------------------------------------------
 
 // A sweep t: 0 -> 1 -> 0 ends with welds, so it returns to the fresh mesh only if welds stop
