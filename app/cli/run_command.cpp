@@ -1,6 +1,9 @@
 #include "app/cli/run_command.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -12,6 +15,7 @@
 #include "app/render/color_mode.h"
 #include "app/render/color_scale.h"
 #include "core/adapt/adapter.h"
+#include "core/adapt/workload_estimate.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
 #include "core/io/stats_csv.h"
@@ -77,6 +81,65 @@ void check_outputs(const RunOptions& o) {
   }
 }
 
+// Memory the budgets allow, estimated before anything is allocated: per triangle the mesh,
+// its adaptation bookkeeping and a snapshot (measured: about kBytesPerTriangle at 2M
+// triangles on capsule-bend), per sample 12 bytes twice (the pool may hold as much garbage
+// as live samples before it is compacted). A face holds at most 256 samples.
+void check_memory_budget(const RunOptions& o) {
+  constexpr double kBytesPerTriangle = 600.0, kBytesPerSample = 24.0, kMiB = 1024.0 * 1024.0;
+  const double triangles = static_cast<double>(o.adapt.max_triangles);
+  const double samples = std::min(static_cast<double>(o.adapt.max_samples), 256.0 * triangles);
+  const double mb = (triangles * kBytesPerTriangle + samples * kBytesPerSample) / kMiB;
+  if (mb > o.max_memory_mb) {
+    std::ostringstream msg;
+    msg << "the budgets (--max-triangles " << o.adapt.max_triangles << ", --max-samples "
+        << o.adapt.max_samples << ") could need about " << std::lround(mb)
+        << " MiB, more than --max-memory " << o.max_memory_mb
+        << "; lower them or raise --max-memory";
+    throw UsageError(msg.str());
+  }
+}
+
+std::string short_number(double x) {
+  std::ostringstream s;
+  s.precision(2);
+  s << x;
+  return s.str();
+}
+
+// Feasibility before any work (workload_estimate.h): at t0 and, for a run with steps, at
+// four more times up to t1, the surface must be finite, continuous and within the triangle
+// and sample budgets at the requested T.
+void check_workload(const RunOptions& o, Surface& surface) {
+  const auto [first, last] = std::minmax_element(o.keyframes.begin(), o.keyframes.end());
+  const int checks = *first < *last ? 5 : 1;
+  for (int c = 0; c < checks; ++c) {
+    const double t = checks == 1 ? *first : *first + (*last - *first) * c / (checks - 1);
+    surface.set_time(t);
+    const WorkloadEstimate w = estimate_workload(surface, o.adapt.threshold, o.adapt.density,
+                                                 static_cast<double>(o.adapt.max_triangles));
+    const std::string at = "scene " + o.scene + " at t = " + short_number(t) + ": ";
+    if (!w.problem.empty()) throw UsageError(at + w.problem);
+    // A typed formula is refused as soon as it needs more than the budget; a built-in scene
+    // (whose parameters have documented ranges) only when the budget is hopeless, else it
+    // runs and reports the budget hit (--max-triangles as a cap on purpose).
+    const double hopeless = o.scene == "expr" ? 1.0 : 10.0;
+    if (w.triangles > hopeless * static_cast<double>(o.adapt.max_triangles))
+      throw UsageError(at + "the surface needs at least about " + short_number(w.triangles) +
+                       " triangles at --threshold " + short_number(o.adapt.threshold) +
+                       " (curvature integral " + short_number(w.curvature) + " over area " +
+                       short_number(w.area) + "), more than --max-triangles " +
+                       std::to_string(o.adapt.max_triangles) +
+                       "; raise --threshold or the budget");
+    if (w.samples > static_cast<double>(o.adapt.max_samples))
+      throw UsageError(at + "the surface needs about " + short_number(w.samples) +
+                       " samples (--density " + short_number(o.adapt.density) + " over area " +
+                       short_number(w.area) + "), more than --max-samples " +
+                       std::to_string(o.adapt.max_samples) +
+                       "; lower --density or raise the budget");
+  }
+}
+
 CriterionList criteria_for(const RunOptions& o, const Surface& surface) {
   double scene_edge_length = 0.0;
   for (const SurfaceParameter& p : surface.parameters())
@@ -89,7 +152,9 @@ void log_step(std::ostream& log, const StepStats& s, int steps) {
       << std::setprecision(3) << s.time << "  triangles=" << s.triangles << "  +" << s.splits
       << " -" << s.welds << "  max_err=" << std::scientific << std::setprecision(2) << s.max_error
       << "  " << std::fixed << std::setprecision(1) << 1e3 * s.seconds.total << " ms"
-      << (s.budget_hit ? "  (triangle budget hit)" : "") << "\n";
+      << (s.budget_hit ? "  (triangle budget hit)" : "")
+      << (s.sample_budget_hit ? "  (sample budget hit)" : "")
+      << (s.time_budget_hit ? "  (time budget hit)" : "") << "\n";
   log.unsetf(std::ios::floatfield);
 }
 
@@ -261,6 +326,8 @@ void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fiel
   summary.keyframe_triangles.push_back(adapter.stats().triangles);
   const std::vector<double> times = step_times(o);
   for (std::size_t i = 0; i < times.size(); ++i) {
+    if (std::chrono::steady_clock::now() > o.adapt.deadline) summary.time_budget_hit = true;
+    if (summary.time_budget_hit) break;  // --max-seconds: the run ends with what it has
     const StepStats& s = adapter.step(times[i]);
     step_seconds.push_back(s.seconds.total);
     record(s);
@@ -296,7 +363,17 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     frames = std::make_unique<FrameRenderer>(o, o.adapt.threshold, written);
   std::unique_ptr<FrameExporter> exporter;
   if (!o.export_dir.empty()) exporter = std::make_unique<FrameExporter>(o.export_dir, written);
+  check_memory_budget(o);
+  try {
+    check_workload(o, *surface);
+  } catch (const std::invalid_argument& e) {  // the surface's own checks at a later time
+    throw UsageError(e.what());
+  }
   surface->set_time(o.keyframes.front());
+  if (o.max_seconds > 0)
+    o.adapt.deadline = std::chrono::steady_clock::now() +
+                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(o.max_seconds));
   Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
   RunSummary summary;
   summary.scene = o.scene;
@@ -327,9 +404,16 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
   summary.quality = measure_quality(adapter.mesh());
   if (frames && !o.quiet)
     log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
-  if (summary.budget_hit && !o.quiet)
+  // Budget hits are reported even with --quiet: the result is not what was asked for.
+  if (summary.budget_hit)
     log << "note: the triangle budget (--max-triangles " << o.adapt.max_triangles
         << ") stopped refinement; errors may exceed T + eps\n";
+  if (summary.sample_budget_hit)
+    log << "note: the sample budget (--max-samples " << o.adapt.max_samples
+        << ") stopped refinement; errors may exceed T + eps\n";
+  if (summary.time_budget_hit)
+    log << "note: the time budget (--max-seconds " << o.max_seconds << ") stopped the run after "
+        << summary.steps_done << " of " << summary.steps << " steps; errors may exceed T + eps\n";
   out << to_json(summary) << std::endl;
   return 0;
 }

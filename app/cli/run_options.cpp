@@ -2,11 +2,12 @@
 
 #include "app/render/color_scale.h"
 
-#include <charconv>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <sstream>
+
+#include "core/io/number_text.h"
 
 namespace dynamesh {
 namespace {
@@ -18,20 +19,31 @@ std::string format_number(double x) {
 }
 
 double parse_number(const std::string& option, const std::string& text) {
-  double value = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value))
-    throw UsageError(option + " expects a number, got '" + text + "'");
-  return value;
+  const std::optional<double> value = parse_finite_number(text);
+  if (!value) throw UsageError(option + " expects a number, got '" + text + "'");
+  return *value;
 }
 
 long parse_integer(const std::string& option, const std::string& text) {
-  const double value = parse_number(option, text);
-  if (value != std::floor(value) || std::abs(value) > 9e15)
-    throw UsageError(option + " expects a whole number, got '" + text + "'");
-  return static_cast<long>(value);
+  const std::optional<long long> value = parse_whole_number(text, -9'000'000'000'000'000LL,
+                                                            9'000'000'000'000'000LL);
+  if (!value) throw UsageError(option + " expects a whole number, got '" + text + "'");
+  return static_cast<long>(*value);
 }
+
+// A whole number in [lo, hi]: values beyond an int are refused, never wrapped.
+int parse_int(const std::string& option, const std::string& text, long lo, long hi) {
+  const long value = parse_integer(option, text);
+  if (value < lo || value > hi)
+    throw UsageError(option + " must be between " + std::to_string(lo) + " and " +
+                     std::to_string(hi) + ", got " + text);
+  return static_cast<int>(value);
+}
+
+// Large enough for any real use, small enough that nothing wraps or runs for days.
+constexpr long kMaxSteps = 10'000'000;
+constexpr long kMaxSmoothIterations = 1000;
+constexpr long kMaxImageSide = 16384;
 
 using Setter =
     std::function<void(RunOptions&, const std::string& option, const std::string& value)>;
@@ -85,8 +97,7 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError(k + ": " + e.what());
          }
        }},
-      {"--steps",
-       [](RunOptions& o, auto& k, auto& v) { o.steps = static_cast<int>(parse_integer(k, v)); }},
+      {"--steps", [](RunOptions& o, auto& k, auto& v) { o.steps = parse_int(k, v, 0, kMaxSteps); }},
       {"--threshold",
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.threshold = parse_number(k, v);
@@ -105,7 +116,7 @@ const std::map<std::string, Setter>& valued_options() {
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
        [](RunOptions& o, auto& k, auto& v) {
-         o.adapt.smoothing.iterations = static_cast<int>(parse_integer(k, v));
+         o.adapt.smoothing.iterations = parse_int(k, v, 0, kMaxSmoothIterations);
        }},
       {"--edge-length",
        [](RunOptions& o, auto& k, auto& v) { o.edge_length = parse_number(k, v); }},
@@ -114,6 +125,23 @@ const std::map<std::string, Setter>& valued_options() {
          const long n = parse_integer(k, v);
          if (n < 2) throw UsageError("--max-triangles must be at least 2, got " + v);
          o.adapt.max_triangles = static_cast<std::size_t>(n);
+       }},
+      {"--max-samples",
+       [](RunOptions& o, auto& k, auto& v) {
+         const long n = parse_integer(k, v);
+         if (n < 1000) throw UsageError("--max-samples must be at least 1000, got " + v);
+         o.adapt.max_samples = static_cast<std::size_t>(n);
+       }},
+      {"--max-seconds",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.max_seconds = parse_number(k, v);
+         if (!(o.max_seconds > 0)) throw UsageError("--max-seconds must be positive, got " + v);
+       }},
+      {"--max-memory",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.max_memory_mb = parse_number(k, v);
+         if (!(o.max_memory_mb >= 64))
+           throw UsageError("--max-memory must be at least 64 (MiB), got " + v);
        }},
       {"--seed",
        [](RunOptions& o, auto& k, auto& v) {
@@ -129,7 +157,7 @@ const std::map<std::string, Setter>& valued_options() {
       {"--height",
        [](RunOptions& o, auto& k, auto& v) {
          if (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos)
-           o.height = static_cast<int>(parse_integer(k, v));
+           o.height = parse_int(k, v, 16, kMaxImageSide);
          else
            o.scene_text.emplace_back("height", v);
        }},
@@ -139,8 +167,8 @@ const std::map<std::string, Setter>& valued_options() {
        [](RunOptions& o, auto& k, auto& v) {
          const auto x = v.find('x');
          if (x == std::string::npos) throw UsageError(k + " expects WIDTHxHEIGHT, e.g. 1920x1080");
-         o.width = static_cast<int>(parse_integer(k, v.substr(0, x)));
-         o.height = static_cast<int>(parse_integer(k, v.substr(x + 1)));
+         o.width = parse_int(k, v.substr(0, x), 16, kMaxImageSide);
+         o.height = parse_int(k, v.substr(x + 1), 16, kMaxImageSide);
        }},
       {"--parametric",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("parametric", v); }},
@@ -155,12 +183,11 @@ const std::map<std::string, Setter>& valued_options() {
       {"--export", [](RunOptions& o, auto&, auto& v) { o.export_dir = v; }},
       {"--export-every",
        [](RunOptions& o, auto& k, auto& v) {
-         o.export_every = static_cast<int>(parse_integer(k, v));
-         if (o.export_every < 1) throw UsageError("--export-every must be at least 1");
+         o.export_every = parse_int(k, v, 1, kMaxSteps);
        }},
       {"--render", [](RunOptions& o, auto&, auto& v) { o.render_dir = v; }},
       {"--width",
-       [](RunOptions& o, auto& k, auto& v) { o.width = static_cast<int>(parse_integer(k, v)); }},
+       [](RunOptions& o, auto& k, auto& v) { o.width = parse_int(k, v, 16, kMaxImageSide); }},
       {"--color", [](RunOptions& o, auto&, auto& v) { o.color = v; }},
       {"--smooth-weights",
        [](RunOptions& o, auto& k, auto& v) {
@@ -240,6 +267,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     if (opt == valued_options().end())
       throw UsageError("unknown option '" + word + "' (see dynamesh-cli run --help)");
     if (i + 1 >= args.size()) throw UsageError(word + " needs a value");
+    if (args[i + 1].empty()) throw UsageError(word + " needs a value, got an empty string");
     opt->second(o, word, args[++i]);
   }
   validate(o);
@@ -291,6 +319,12 @@ Adaptation:
                          mri 2 per mm^2]
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
   --max-triangles M      refinement budget (reported when hit)  [2000000]
+  --max-samples S        sample budget: refinement stops beyond S samples (reported)
+                         [50000000]
+  --max-seconds S        wall-time budget: refinement and stepping stop after S seconds,
+                         the run ends with what it has (reported)  [no limit]
+  --max-memory MB        refused before starting when the budgets above could need more
+                         memory than MB MiB (an estimate)  [4096]
   --seed S               sample jitter seed  [1]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]

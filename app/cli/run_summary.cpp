@@ -20,6 +20,9 @@ void RunSummary::add(const StepStats& s) {
   total_splits += s.splits;
   total_welds += s.welds;
   budget_hit = budget_hit || s.budget_hit;
+  sample_budget_hit = sample_budget_hit || s.sample_budget_hit;
+  time_budget_hit = time_budget_hit || s.time_budget_hit;
+  steps_done = s.step;
   if (s.triangles > peak_triangles) {
     peak_triangles = s.triangles;
     peak_triangles_step = s.step;
@@ -48,6 +51,9 @@ std::string to_json(const RunSummary& s) {
       << ",\"kept_fraction\":" << number(l.kept_fraction)
       << ",\"survivor_displacement_mean\":" << number(l.survivor_displacement_mean)
       << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
+      << ",\"sample_budget_hit\":" << (s.sample_budget_hit ? "true" : "false")
+      << ",\"time_budget_hit\":" << (s.time_budget_hit ? "true" : "false")
+      << ",\"steps_done\":" << s.steps_done
       << ",\"peak_triangles\":" << s.peak_triangles
       << ",\"peak_triangles_step\":" << s.peak_triangles_step
       << ",\"worst_max_sample_error\":" << number(s.worst_max_error)

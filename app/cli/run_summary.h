@@ -17,6 +17,8 @@ struct RunSummary {
   double seconds_per_step_median = 0.0;
   MeshQuality quality;
   bool budget_hit = false;  // in any step
+  bool sample_budget_hit = false, time_budget_hit = false;
+  std::uint64_t steps_done = 0;  // fewer than `steps` when the time budget stopped the run
   // Over the whole run, initialisation included: the most triangles and the largest sampled
   // error of any step, and the steps they occurred at (the last step alone may hide them).
   std::size_t peak_triangles = 0;

@@ -94,6 +94,7 @@ class ViewerApp {
         // --camera: the first mesh is framed with that view, whatever was saved.
         fitted_scene_(args.camera ? std::string() : args.camera_scene),
         fitted_text_(args.camera_text) {
+    status_ = args.notice;  // e.g. why the saved settings were not used
     if (state_.window_x >= 0 && state_.window_y >= 0)
       window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);

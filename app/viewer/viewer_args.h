@@ -37,6 +37,8 @@ struct ViewerArgs {
   std::string camera_scene;
   TextOptions camera_text;
   bool help = false;
+  // Shown in the panel's status line at start (e.g. that broken saved settings were ignored).
+  std::string notice;
   bool version = false;
   // --camera: the view the first mesh is framed with (instead of the saved or default one).
   std::optional<CameraView> camera;

@@ -1,5 +1,7 @@
 #include "app/viewer/viewer_state.h"
 
+#include <cmath>
+#include <cstdint>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +12,7 @@
 
 #include "app/render/color_scale.h"
 #include "core/io/atomic_file.h"
+#include "core/io/number_text.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -58,17 +61,28 @@ std::string encode(const glm::quat& q) {
   return encode(q.w) + " " + encode(q.x) + " " + encode(q.y) + " " + encode(q.z);
 }
 
+// Numbers as strictly as on the command line (core/io/number_text.h): the whole text, finite,
+// in the type's range.
 bool decode(const std::string& t, double& v) {
-  return static_cast<bool>(std::istringstream(t) >> v);
+  const auto n = parse_finite_number(t);
+  if (n) v = *n;
+  return n.has_value();
 }
 bool decode(const std::string& t, float& v) {
-  return static_cast<bool>(std::istringstream(t) >> v);
+  const auto n = parse_finite_number(t);
+  if (!n || std::abs(*n) > 3e38) return false;
+  v = static_cast<float>(*n);
+  return true;
 }
 bool decode(const std::string& t, int& v) {
-  return static_cast<bool>(std::istringstream(t) >> v);
+  const auto n = parse_whole_number(t, INT32_MIN, INT32_MAX);
+  if (n) v = static_cast<int>(*n);
+  return n.has_value();
 }
 bool decode(const std::string& t, unsigned& v) {
-  return static_cast<bool>(std::istringstream(t) >> v);
+  const auto n = parse_whole_number(t, 0, UINT32_MAX);
+  if (n) v = static_cast<unsigned>(*n);
+  return n.has_value();
 }
 bool decode(const std::string& t, bool& v) {
   if (t != "true" && t != "false") return false;
@@ -184,7 +198,8 @@ void save_viewer_state(const ViewerState& state, const std::string& path) {
   file.commit();
 }
 
-bool load_viewer_state(ViewerState& state, const std::string& path) {
+bool load_viewer_state(ViewerState& state, const std::string& path,
+                       std::vector<std::string>* rejected) {
   std::ifstream in(path);
   if (!in) return false;
   std::map<std::string, std::string> entries;
@@ -206,11 +221,14 @@ bool load_viewer_state(ViewerState& state, const std::string& path) {
       entries[key] = value;
     }
   }
-  visit_fields(state, [&entries](const char* key, auto& value) {
+  visit_fields(state, [&entries, rejected](const char* key, auto& value) {
     const auto it = entries.find(key);
     if (it == entries.end()) return;
     auto decoded = value;
-    if (decode(it->second, decoded)) value = decoded;
+    if (decode(it->second, decoded))
+      value = decoded;
+    else if (rejected)
+      rejected->push_back(key);
   });
   state.controls.scene_parameters = parameters;
   state.controls.scene_text = text;

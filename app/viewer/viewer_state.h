@@ -82,7 +82,9 @@ std::string settings_path();
 // std::runtime_error on failure.
 void save_viewer_state(const ViewerState& state, const std::string& path);
 // Reads a file written by save_viewer_state over `state`: unknown keys are ignored (older or
-// newer versions), malformed values are skipped. Returns false when the file cannot be read.
-bool load_viewer_state(ViewerState& state, const std::string& path);
+// newer versions), malformed values (numbers read as strictly as on the command line) are
+// skipped and their keys added to `rejected`. Returns false when the file cannot be read.
+bool load_viewer_state(ViewerState& state, const std::string& path,
+                       std::vector<std::string>* rejected = nullptr);
 
 }  // namespace dynamesh

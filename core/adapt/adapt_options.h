@@ -1,6 +1,7 @@
 // Options of the adaptation (de Goes et al. 2006, Section 3; defaults from DESIGN.md).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 
@@ -30,6 +31,12 @@ struct AdaptOptions {
   double density = 2000.0;   // D: samples per unit area (at least one per triangle)
   std::uint64_t seed = 1;    // sample jitter; runs with the same seed are identical
   std::size_t max_triangles = 2'000'000;  // refinement stops at this budget (reported)
+  // Budgets against hostile input (issue 15), reported like the triangle budget: refinement
+  // stops when the sample pool holds more than max_samples (12 bytes each; a face holds up to
+  // 256, so a huge density would otherwise fill memory long before max_triangles), or when
+  // the wall clock passes `deadline`.
+  std::size_t max_samples = 50'000'000;
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
   SmoothingOptions smoothing;

@@ -403,6 +403,15 @@ void Adapter::split_pass(bool initial) {
       stats_.budget_hit = true;
       break;
     }
+    if (samples_.n_samples() > options_.max_samples) {
+      stats_.sample_budget_hit = true;
+      break;
+    }
+    // The clock is read every 64 splits (a split costs microseconds).
+    if ((++splits_since_clock_ & 63) == 0 && std::chrono::steady_clock::now() > options_.deadline) {
+      stats_.time_budget_hit = true;
+      break;
+    }
     if (split_refused(f)) {
       ++stats_.splits_refused;
       continue;

@@ -103,6 +103,7 @@ class Adapter {
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
   std::uint64_t step_ = 0;
+  std::uint32_t splits_since_clock_ = 0;  // the deadline is checked every 64 splits
   double last_time_ = 0.0;
   std::vector<double> last_parameters_;
   // Positions at the start of the current step (temporal coherence); reused step to step.

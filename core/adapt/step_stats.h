@@ -38,6 +38,8 @@ struct StepStats {
   std::size_t folds_found = 0, slivers_found = 0, repair_moves = 0;
   std::size_t folds_left = 0, slivers_left = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
+  bool time_budget_hit = false;    // ... at AdaptOptions::deadline
   PhaseSeconds seconds;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
@@ -41,6 +42,25 @@ ImplicitExpressionSurface::ImplicitExpressionSurface(const std::string& formula,
 void ImplicitExpressionSurface::set_time(double t) {
   // Check first: a throw leaves the surface (and the adapter's mesh) at the last good time.
   const ImplicitScan scan = scan_implicit(f_, formula_, bounds_, t, kStepScan, &interior_);
+  if (!file_mesh_) {
+    // The box base mesh follows the surface by projection along the gradient, which keeps
+    // it on a star-shaped surface; one that stops being star-shaped (changes topology, or
+    // folds: x^2+y^2+z^2-1+t*sin(40*x)) cannot be followed, and the adapter would refine
+    // towards it until a budget stops it. Refused at the time it happens.
+    const Vec3 previous = interior_;
+    interior_ = scan.interior;
+    try {
+      check_star_shaped(
+          [&](const Vec3& p) {
+            const double x[4] = {p.x(), p.y(), p.z(), t};
+            return f_.value(x);
+          },
+          t, 200, 64);
+    } catch (const std::invalid_argument&) {
+      interior_ = previous;
+      throw;
+    }
+  }
   interior_ = scan.interior;
   Surface::set_time(t);
   tape_ = f_.tape_with("t", t);
@@ -141,7 +161,7 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
         "implicit formula '" + formula_ + "': the ray from the inside point " + format_point(c) +
         " towards " + format_point(q) + " never leaves the inside; enlarge --bounds");
   };
-  check_star_shaped(F);
+  check_star_shaped(F, time(), 400, 128);
   try {
     return make_projected_box_mesh(*this, bounds_, counts, place);
   } catch (const std::logic_error& e) {
@@ -154,17 +174,17 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
 }
 
 template <class Value>
-void ImplicitExpressionSurface::check_star_shaped(const Value& F) const {
+void ImplicitExpressionSurface::check_star_shaped(const Value& F, double t, int directions,
+                                                  int march) const {
   // Placing the box by rays from the interior point is right only when every ray leaves the
   // inside once and for all (the surface is star-shaped around it, so of sphere topology).
-  // Checked along kDirections rays spread evenly over the sphere (a Fibonacci lattice), each
-  // marched to the box in kMarch steps: a torus or a dumbbell bent around fails here rather
+  // Checked along directions rays spread evenly over the sphere (a Fibonacci lattice), each
+  // marched to the box in march steps: a torus or a dumbbell bent around fails here rather
   // than giving a base mesh that wraps the wrong shape.
-  constexpr int kDirections = 400, kMarch = 128;
   const Vec3 c = interior_;
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kDirections; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / kDirections, r = std::sqrt(1.0 - z * z);
+  for (int i = 0; i < directions; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / directions, r = std::sqrt(1.0 - z * z);
     const Vec3 d(r * std::cos(golden * i), r * std::sin(golden * i), z);
     double exit = HUGE_VAL;
     for (int a = 0; a < 3; ++a) {
@@ -172,13 +192,14 @@ void ImplicitExpressionSurface::check_star_shaped(const Value& F) const {
       if (d[a] < 0) exit = std::min(exit, (bounds_.min[a] - c[a]) / d[a]);
     }
     bool left = false;
-    for (int k = 1; k <= kMarch; ++k) {
-      const Vec3 p = c + (exit * k / kMarch) * d;
+    for (int k = 1; k <= march; ++k) {
+      const Vec3 p = c + (exit * k / march) * d;
       const bool inside = F(p) < 0;
       if (!inside) left = true;
       if (inside && left)
         throw std::invalid_argument(
-            "implicit formula '" + formula_ + "': a ray from the inside point " + format_point(c) +
+            "implicit formula '" + formula_ + "' at t = " + std::to_string(t) +
+            ": a ray from the inside point " + format_point(c) +
             " enters the surface again at " + format_point(p) +
             ", so a box cannot be placed on it (not star-shaped, or not of sphere topology): "
             "give a base mesh of its shape with --base-mesh FILE");
@@ -186,9 +207,37 @@ void ImplicitExpressionSurface::check_star_shaped(const Value& F) const {
   }
 }
 
+namespace {
+
+// The surface F = 0 inside bounded --bounds is closed, so its base mesh must be closed too:
+// every edge shared by exactly two triangles. An open one would be adapted as a patch.
+void check_closed(const std::string& path, const std::vector<std::array<std::uint32_t, 3>>& tris) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::size_t open = 0;
+  std::pair<std::uint32_t, std::uint32_t> example;
+  for (const auto& [edge, n] : uses)
+    if (n != 2) {
+      if (open++ == 0) example = edge;
+    }
+  if (open > 0)
+    throw std::invalid_argument(
+        "base mesh " + path + ": " + std::to_string(open) +
+        " edges are not shared by exactly two triangles (e.g. vertices " +
+        std::to_string(example.first) + " and " + std::to_string(example.second) +
+        "): an implicit surface is closed, so its base mesh must be a closed manifold too");
+}
+
+}  // namespace
+
 Mesh48 ImplicitExpressionSurface::file_base_mesh() const {
   std::vector<Vec3> positions = file_mesh_->positions;
   std::vector<std::array<std::uint32_t, 3>> triangles = file_mesh_->triangles;
+  check_closed(base_mesh_path_, triangles);
   // OBJ and PLY writers disagree on winding: face the majority outwards (F grows outwards),
   // then let check_orientation() catch a mesh that is inconsistent.
   double outward = 0.0;

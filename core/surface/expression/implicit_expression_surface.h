@@ -44,7 +44,7 @@ class ImplicitExpressionSurface final : public ImplicitSurface {
   Mesh48 box_base_mesh() const;
   Mesh48 file_base_mesh() const;
   template <class Value>
-  void check_star_shaped(const Value& F) const;
+  void check_star_shaped(const Value& F, double t, int directions, int march) const;
   void check_orientation(const Mesh48& mesh, const std::string& source) const;
 
   std::string formula_;
