@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -129,8 +128,7 @@ void check_workload(const RunOptions& o, Surface& surface) {
                        " triangles at --threshold " + short_number(o.adapt.threshold) +
                        " (curvature integral " + short_number(w.curvature) + " over area " +
                        short_number(w.area) + "), more than --max-triangles " +
-                       std::to_string(o.adapt.max_triangles) +
-                       "; raise --threshold or the budget");
+                       std::to_string(o.adapt.max_triangles) + "; raise --threshold or the budget");
     if (w.samples > static_cast<double>(o.adapt.max_samples))
       throw UsageError(at + "the surface needs about " + short_number(w.samples) +
                        " samples (--density " + short_number(o.adapt.density) + " over area " +
@@ -155,6 +153,18 @@ void log_step(std::ostream& log, const StepStats& s, int steps) {
       << (s.budget_hit ? "  (triangle budget hit)" : "")
       << (s.sample_budget_hit ? "  (sample budget hit)" : "")
       << (s.time_budget_hit ? "  (time budget hit)" : "") << "\n";
+  log.unsetf(std::ios::floatfield);
+}
+
+// Topology events (issue 16) on stderr whatever --quiet says: they change what the run means.
+void log_topology(std::ostream& log, const StepStats& s) {
+  for (const TopologyEvent& e : s.topology_events)
+    log << "topology: " << to_string(e.kind) << " at t=" << std::fixed << std::setprecision(4)
+        << e.time << " near (" << std::setprecision(3) << e.position.x() << ", " << e.position.y()
+        << ", " << e.position.z() << ")\n";
+  if (s.rebuilt)
+    log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
+        << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";
   log.unsetf(std::ios::floatfield);
 }
 
@@ -309,6 +319,7 @@ void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fiel
   const int total_steps = static_cast<int>(step_times(o).size());
   auto record = [&](const StepStats& s) {
     summary.add(s);
+    log_topology(log, s);
     if (csv) csv->write(s, summary.total_splits, summary.total_welds);
     if (!o.quiet) log_step(log, s, total_steps);
     if (o.check) {

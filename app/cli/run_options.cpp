@@ -113,6 +113,12 @@ const std::map<std::string, Setter>& valued_options() {
          o.adapt.density = parse_number(k, v);
          o.density_given = true;
        }},
+      {"--sampling",
+       [](RunOptions& o, auto&, auto& v) {
+         if (v != "predictive" && v != "full")
+           throw UsageError("--sampling must be predictive or full, got '" + v + "'");
+         o.adapt.sampling = v == "full" ? Sampling::kFull : Sampling::kPredictive;
+       }},
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
        [](RunOptions& o, auto& k, auto& v) {
@@ -326,6 +332,8 @@ Adaptation:
   --max-memory MB        refused before starting when the budgets above could need more
                          memory than MB MiB (an estimate)  [4096]
   --seed S               sample jitter seed  [1]
+  --sampling MODE        predictive: re-measure only faces whose error may have left the
+                         band since last measured; full: every face every step  [predictive]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
   --smooth-weights W     the one-ring centroid of Equation 1: uniform (the paper's) or

@@ -31,6 +31,8 @@ void RunSummary::add(const StepStats& s) {
     worst_max_error = s.max_error;
     worst_max_error_step = s.step;
   }
+  topology_events.insert(topology_events.end(), s.topology_events.begin(), s.topology_events.end());
+  rebuilds += s.rebuilt;
 }
 
 std::string to_json(const RunSummary& s) {
@@ -53,14 +55,21 @@ std::string to_json(const RunSummary& s) {
       << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
       << ",\"sample_budget_hit\":" << (s.sample_budget_hit ? "true" : "false")
       << ",\"time_budget_hit\":" << (s.time_budget_hit ? "true" : "false")
-      << ",\"steps_done\":" << s.steps_done
-      << ",\"peak_triangles\":" << s.peak_triangles
+      << ",\"steps_done\":" << s.steps_done << ",\"peak_triangles\":" << s.peak_triangles
       << ",\"peak_triangles_step\":" << s.peak_triangles_step
       << ",\"worst_max_sample_error\":" << number(s.worst_max_error)
       << ",\"worst_max_sample_error_step\":" << s.worst_max_error_step
       << ",\"keyframe_triangles\":[";
   for (std::size_t i = 0; i < s.keyframe_triangles.size(); ++i)
     out << (i ? "," : "") << s.keyframe_triangles[i];
+  out << "]"
+      << ",\"rebuilds\":" << s.rebuilds << ",\"topology_events\":[";
+  for (std::size_t i = 0; i < s.topology_events.size(); ++i) {
+    const TopologyEvent& e = s.topology_events[i];
+    out << (i ? "," : "") << "{\"time\":" << number(e.time) << ",\"kind\":\"" << to_string(e.kind)
+        << "\",\"position\":[" << number(e.position.x()) << ',' << number(e.position.y()) << ','
+        << number(e.position.z()) << "]}";
+  }
   out << "]}";
   return out.str();
 }

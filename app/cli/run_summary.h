@@ -30,6 +30,8 @@ struct RunSummary {
 
   // Takes one step's statistics into the run's totals and extremes.
   void add(const StepStats& s);
+  std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
+  std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
 };
 
 std::string to_json(const RunSummary& s);

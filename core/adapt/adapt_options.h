@@ -25,6 +25,10 @@ struct AngleGuard {
   double max_deg = 160.0;
 };
 
+// Which faces a step measures: those whose error could have left the range where no decision
+// depends on it (error_predictor.h), or every face (the reference).
+enum class Sampling { kPredictive, kFull };
+
 struct AdaptOptions {
   double threshold = 0.008;  // T: target geometric error (scene units)
   double epsilon = 0.002;    // eps: hysteresis half-width; weld below T - eps, split above T + eps
@@ -39,6 +43,10 @@ struct AdaptOptions {
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
+  Sampling sampling = Sampling::kPredictive;
+  // Watch F for merges, splits and pinches and rebuild the mesh when its topology no longer
+  // matches (surfaces that say they may change topology; core/topology/topology_events.h).
+  bool topology_events = true;
   SmoothingOptions smoothing;
   AngleGuard angle_guard;
   // Every frame embedded and well shaped, whatever the step size (DESIGN.md, "Quality bars"):

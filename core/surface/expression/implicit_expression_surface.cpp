@@ -11,6 +11,7 @@
 #include "core/surface/expression/formula_checks.h"
 #include "core/surface/finite_differences.h"
 #include "core/surface/projection.h"
+#include "core/topology/contour_base_mesh.h"
 
 namespace dynamesh {
 
@@ -42,25 +43,6 @@ ImplicitExpressionSurface::ImplicitExpressionSurface(const std::string& formula,
 void ImplicitExpressionSurface::set_time(double t) {
   // Check first: a throw leaves the surface (and the adapter's mesh) at the last good time.
   const ImplicitScan scan = scan_implicit(f_, formula_, bounds_, t, kStepScan, &interior_);
-  if (!file_mesh_) {
-    // The box base mesh follows the surface by projection along the gradient, which keeps
-    // it on a star-shaped surface; one that stops being star-shaped (changes topology, or
-    // folds: x^2+y^2+z^2-1+t*sin(40*x)) cannot be followed, and the adapter would refine
-    // towards it until a budget stops it. Refused at the time it happens.
-    const Vec3 previous = interior_;
-    interior_ = scan.interior;
-    try {
-      check_star_shaped(
-          [&](const Vec3& p) {
-            const double x[4] = {p.x(), p.y(), p.z(), t};
-            return f_.value(x);
-          },
-          t, 200, 64);
-    } catch (const std::invalid_argument&) {
-      interior_ = previous;
-      throw;
-    }
-  }
   interior_ = scan.interior;
   Surface::set_time(t);
   tape_ = f_.tape_with("t", t);
@@ -122,8 +104,20 @@ Mesh48 ImplicitExpressionSurface::base_mesh() const {
 }
 
 Mesh48 ImplicitExpressionSurface::build_base_mesh() const {
-  Mesh48 mesh = file_mesh_ ? file_base_mesh() : box_base_mesh();
-  check_orientation(mesh, file_mesh_ ? "base mesh " + base_mesh_path_ : "the box base mesh");
+  if (file_mesh_) {
+    Mesh48 mesh = file_base_mesh();
+    check_orientation(mesh, "base mesh " + base_mesh_path_);
+    return mesh;
+  }
+  // A star-shaped surface gets the box of quads (few, well-shaped base quads); any other
+  // (a torus, two blobs, a dumbbell bent round) is contoured from F itself (issue 16).
+  if (is_star_shaped()) {
+    Mesh48 mesh = box_base_mesh();
+    check_orientation(mesh, "the box base mesh");
+    return mesh;
+  }
+  Mesh48 mesh = make_contour_base_mesh(*this);
+  check_orientation(mesh, "the contoured base mesh");
   return mesh;
 }
 
@@ -161,7 +155,6 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
         "implicit formula '" + formula_ + "': the ray from the inside point " + format_point(c) +
         " towards " + format_point(q) + " never leaves the inside; enlarge --bounds");
   };
-  check_star_shaped(F, time(), 400, 128);
   try {
     return make_projected_box_mesh(*this, bounds_, counts, place);
   } catch (const std::logic_error& e) {
@@ -173,18 +166,18 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
   }
 }
 
-template <class Value>
-void ImplicitExpressionSurface::check_star_shaped(const Value& F, double t, int directions,
-                                                  int march) const {
+bool ImplicitExpressionSurface::is_star_shaped() const {
   // Placing the box by rays from the interior point is right only when every ray leaves the
   // inside once and for all (the surface is star-shaped around it, so of sphere topology).
-  // Checked along directions rays spread evenly over the sphere (a Fibonacci lattice), each
-  // marched to the box in march steps: a torus or a dumbbell bent around fails here rather
-  // than giving a base mesh that wraps the wrong shape.
+  // Checked along kDirections rays spread evenly over the sphere (a Fibonacci lattice), each
+  // marched to the box in kMarch steps: a torus or a dumbbell bent around fails here and is
+  // contoured instead of getting a base mesh that wraps the wrong shape.
+  constexpr int kDirections = 400, kMarch = 128;
   const Vec3 c = interior_;
+  const double t = time();
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < directions; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / directions, r = std::sqrt(1.0 - z * z);
+  for (int i = 0; i < kDirections; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / kDirections, r = std::sqrt(1.0 - z * z);
     const Vec3 d(r * std::cos(golden * i), r * std::sin(golden * i), z);
     double exit = HUGE_VAL;
     for (int a = 0; a < 3; ++a) {
@@ -192,19 +185,15 @@ void ImplicitExpressionSurface::check_star_shaped(const Value& F, double t, int 
       if (d[a] < 0) exit = std::min(exit, (bounds_.min[a] - c[a]) / d[a]);
     }
     bool left = false;
-    for (int k = 1; k <= march; ++k) {
-      const Vec3 p = c + (exit * k / march) * d;
-      const bool inside = F(p) < 0;
+    for (int k = 1; k <= kMarch; ++k) {
+      const Vec3 p = c + (exit * k / kMarch) * d;
+      const double x[4] = {p.x(), p.y(), p.z(), t};
+      const bool inside = f_.value(x) < 0;
       if (!inside) left = true;
-      if (inside && left)
-        throw std::invalid_argument(
-            "implicit formula '" + formula_ + "' at t = " + std::to_string(t) +
-            ": a ray from the inside point " + format_point(c) +
-            " enters the surface again at " + format_point(p) +
-            ", so a box cannot be placed on it (not star-shaped, or not of sphere topology): "
-            "give a base mesh of its shape with --base-mesh FILE");
+      if (inside && left) return false;
     }
   }
+  return true;
 }
 
 namespace {
@@ -283,8 +272,8 @@ void ImplicitExpressionSurface::check_orientation(const Mesh48& mesh,
           source + " folds over when placed on the surface of '" + formula_ + "' near " +
           format_point(Vec3((a + b + c) / 3.0)) +
           (file_mesh_ ? "; give a finer base mesh closer to the surface"
-                      : "; the surface is not star-shaped around " + format_point(interior_) +
-                            " (or not of sphere topology): give --base-mesh FILE"));
+                      : "; give --base-mesh FILE, or tighter --bounds (the contour's grid spacing "
+                        "is a 24th of their longest side)"));
   }
 }
 
