@@ -196,8 +196,8 @@ TEST(ExprFormula, HeightMatchesBuiltInSinc) {
     // Second: truncation f'''' H^2/12 with H = 2e-4, |f''''| ~ (4 pi)^4 0.6: ~5e-5.
     EXPECT_NEAR((a.suu - b.suu).norm(), 0.0, 1e-3 * (1 + b.suu.norm()));
     EXPECT_NEAR((a.suv - b.suv).norm(), 0.0, 1e-3 * (1 + b.suv.norm()));
-    // Same orientation as sinc: Su x Sv points to -y.
-    EXPECT_LT(h.normal(uv).y(), 0.0);
+    // Same orientation as sinc: Su x Sv points up, to +y.
+    EXPECT_GT(h.normal(uv).y(), 0.0);
   }
 }
 

@@ -1,7 +1,8 @@
 // What `dynamesh-cli run --render` draws (issue 12), read back from its PNG files: an open
 // surface shows its colour bar's colours from above and from below; --color, --camera,
 // --no-wireframe, --color-range change the picture in the documented direction; categorical
-// fields (valence) are flat per vertex region, not blended across faces.
+// fields (valence) are flat per vertex region, not blended across faces; the shaded sinc
+// shows its front from above.
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "app/render/colormap.h"
+#include "app/render/render_style.h"
 #include "cli_runner.h"
 #include "test_render_scratch.h"
 
@@ -113,6 +115,38 @@ TEST(CliPictures, OpenSurfaceShowsTheBarsColoursFromAboveAndBelow) {
                                      "shaded", "--camera", "0,90", "--no-wireframe"},
                                 "shaded");
   EXPECT_LT(saturation(shaded.at(shaded.width / 2, shaded.height / 2)), 0.35);
+}
+
+// The sinc is a height field whose upper side is its front (sinc_scene.h): shaded from above
+// it shows the surface tint, from below the back-face tint blended in (mesh.frag.glsl). Hues,
+// since lighting scales a colour and highlights add white.
+TEST(CliPictures, ShadedSincShowsItsFrontFromAbove) {
+  const RenderStyle style;
+  const glm::vec3 back = glm::mix(style.surface_color, style.backface_tint, 0.65f);
+  const auto rgb = [](const glm::vec3& c) {
+    return Rgb{int(255 * c.r), int(255 * c.g), int(255 * c.b)};
+  };
+  const double front_hue = hue(rgb(style.surface_color)), back_hue = hue(rgb(back));
+  ASSERT_GT(hue_distance(front_hue, back_hue), 90.0);  // the two are told apart by hue
+  const Args flat{"--scene", "sinc",    "--param", "alpha=0",       "--steps",
+                  "0",       "--color", "shaded",  "--no-wireframe"};
+  for (const char* side : {"above", "below"}) {
+    SCOPED_TRACE(side);
+    const bool above = std::string(side) == "above";
+    const Picture p =
+        render(flat + Args{"--camera", above ? "0,90" : "0,-90"}, std::string("shaded_") + side);
+    ASSERT_FALSE(p.pixels.empty());
+    // A 5 x 5 block of the view's middle, every pixel nearer the expected side's hue.
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const Rgb c = p.at(p.width * 2 / 5 + 10 * dx, p.height / 2 + 10 * dy);
+        const double to_front = hue_distance(hue(c), front_hue),
+                     to_back = hue_distance(hue(c), back_hue);
+        EXPECT_LT(above ? to_front : to_back, 15.0)
+            << "pixel " << c.r << "," << c.g << "," << c.b << " (front " << front_hue
+            << " deg, back " << back_hue << " deg)";
+      }
+  }
 }
 
 TEST(CliPictures, CameraDistanceAndElevation) {
