@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli_runner.h"
 #include "test_nifti_files.h"
 
 namespace dynamesh {
@@ -29,25 +30,13 @@ struct Outcome {
   double seconds = 0;
 };
 
-// Single quotes for the shell.
-std::string quoted(const std::string& word) {
-  std::string q = "'";
-  for (char c : word) {
-    if (c == '\'')
-      q.append("'\\''");
-    else
-      q.push_back(c);
-  }
-  q.push_back('\'');
-  return q;
-}
 
 Outcome run(const std::vector<std::string>& args, int limit = kLimitSeconds) {
   static const fs::path dir = test::scratch_dir("cli_hostile");
   const fs::path err = dir / "stderr.txt";
   std::ostringstream command;
   command << "timeout -s KILL " << limit << " " << kCli;
-  for (const std::string& a : args) command << " " << quoted(a);
+  for (const std::string& a : args) command << " " << test::shell_quoted(a);
   command << " 2>" << err.string();
   Outcome r;
   const auto start = std::chrono::steady_clock::now();

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "tests/support/mesh_validity.h"
 
 namespace dynamesh {
@@ -26,19 +27,6 @@ struct CliResult {
   std::string out, err;
 };
 
-// Single-quoted for the shell. (Built with append: GCC 12 warns falsely, -Wrestrict, on
-// "'" + s.)
-std::string quoted(const std::string& arg) {
-  std::string q(1, '\'');
-  for (char c : arg) {
-    if (c == '\'')
-      q.append("'\\''");
-    else
-      q.push_back(c);
-  }
-  q.push_back('\'');
-  return q;
-}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -52,10 +40,10 @@ CliResult run_cli(const std::vector<std::string>& args) {
       fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" / ("expr_cli_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::string command("cd ");
-  command.append(quoted(kSource)).append(" && ").append(quoted(kCli)).append(" run");
-  for (const std::string& a : args) command.append(" ").append(quoted(a));
-  command.append(" > ").append(quoted((dir / "out").string()));
-  command.append(" 2> ").append(quoted((dir / "err").string()));
+  command.append(test::shell_quoted(kSource)).append(" && ").append(test::shell_quoted(kCli)).append(" run");
+  for (const std::string& a : args) command.append(" ").append(test::shell_quoted(a));
+  command.append(" > ").append(test::shell_quoted((dir / "out").string()));
+  command.append(" 2> ").append(test::shell_quoted((dir / "err").string()));
   CliResult r;
   const int raw = std::system(command.c_str());
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
