@@ -6,8 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include "core/parallel.h"
+#include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
+#include "core/parallel.h"
 
 namespace dynamesh {
 namespace {
@@ -45,25 +46,6 @@ SmoothingWorkspace::~SmoothingWorkspace() = default;
 namespace {
 
 using Work = SmoothingWorkspace::Buffers;
-
-// Cosine of the triangle's smallest angle, the one opposite its shortest edge (1 for a
-// degenerate triangle). Comparing cosines avoids three atan2 per face: the angle is
-// decreasing in its cosine on [0, pi].
-double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  // The angle opposite the shortest edge lies between the two other edges.
-  Vec3 u, v;
-  if (lab <= lbc && lab <= lca) {
-    u = a - c, v = b - c;
-  } else if (lbc <= lca) {
-    u = b - a, v = c - a;
-  } else {
-    u = a - b, v = c - b;
-  }
-  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
-  return norms > 0 ? u.dot(v) / norms : 1.0;
-}
 
 // Centroids of every vertex's one-ring, and which vertices lie on the boundary, in one pass
 // over the faces that meets each edge once (from its lower-numbered halfedge): walking each
