@@ -14,7 +14,7 @@
 #include "app/render/color_mode.h"
 #include "app/render/color_scale.h"
 #include "core/adapt/adapter.h"
-#include "core/adapt/workload_estimate.h"
+#include "core/adapt/workload_check.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
 #include "core/io/stats_csv.h"
@@ -99,43 +99,18 @@ void check_memory_budget(const RunOptions& o) {
   }
 }
 
-std::string short_number(double x) {
-  std::ostringstream s;
-  s.precision(2);
-  s << x;
-  return s.str();
-}
-
-// Feasibility before any work (workload_estimate.h): at t0 and, for a run with steps, at
-// four more times up to t1, the surface must be finite, continuous and within the triangle
-// and sample budgets at the requested T.
+// Feasibility before any work (workload_check.h): at t0 and, for a run with steps, at four
+// more times up to t1.
 void check_workload(const RunOptions& o, Surface& surface) {
   const auto [first, last] = std::minmax_element(o.keyframes.begin(), o.keyframes.end());
-  const int checks = *first < *last ? 5 : 1;
-  for (int c = 0; c < checks; ++c) {
-    const double t = checks == 1 ? *first : *first + (*last - *first) * c / (checks - 1);
-    surface.set_time(t);
-    const WorkloadEstimate w = estimate_workload(surface, o.adapt.threshold, o.adapt.density,
-                                                 static_cast<double>(o.adapt.max_triangles));
-    const std::string at = "scene " + o.scene + " at t = " + short_number(t) + ": ";
-    if (!w.problem.empty()) throw UsageError(at + w.problem);
-    // A typed formula is refused as soon as it needs more than the budget; a built-in scene
-    // (whose parameters have documented ranges) only when the budget is hopeless, else it
-    // runs and reports the budget hit (--max-triangles as a cap on purpose).
-    const double hopeless = o.scene == "expr" ? 1.0 : 10.0;
-    if (w.triangles > hopeless * static_cast<double>(o.adapt.max_triangles))
-      throw UsageError(at + "the surface needs at least about " + short_number(w.triangles) +
-                       " triangles at --threshold " + short_number(o.adapt.threshold) +
-                       " (curvature integral " + short_number(w.curvature) + " over area " +
-                       short_number(w.area) + "), more than --max-triangles " +
-                       std::to_string(o.adapt.max_triangles) + "; raise --threshold or the budget");
-    if (w.samples > static_cast<double>(o.adapt.max_samples))
-      throw UsageError(at + "the surface needs about " + short_number(w.samples) +
-                       " samples (--density " + short_number(o.adapt.density) + " over area " +
-                       short_number(w.area) + "), more than --max-samples " +
-                       std::to_string(o.adapt.max_samples) +
-                       "; lower --density or raise the budget");
-  }
+  WorkloadBudget budget;
+  budget.threshold = o.adapt.threshold;
+  budget.density = o.adapt.density;
+  budget.max_triangles = static_cast<double>(o.adapt.max_triangles);
+  budget.max_samples = static_cast<double>(o.adapt.max_samples);
+  budget.hopeless = o.scene == "expr" ? 1.0 : 10.0;
+  const std::string reason = workload_refusal(surface, budget, *first, *last);
+  if (!reason.empty()) throw UsageError("scene " + o.scene + " " + reason);
 }
 
 CriterionList criteria_for(const RunOptions& o, const Surface& surface) {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <exception>
+#include <stdexcept>
 
 #include "app/render/color_mode.h"
+#include "core/adapt/workload_check.h"
 
 namespace dynamesh {
 namespace {
@@ -25,6 +27,24 @@ CriterionList criteria_for(const SimulationControls& c, const Surface& surface) 
   for (const SurfaceParameter& p : surface.parameters())
     if (p.name == "L") scene_edge_length = p.value;
   return default_criteria(c.scene, scene_edge_length, adapt_options(c), c.edge_length);
+}
+
+// Issue 15: a surface that no mesh can follow, or that needs more than the budgets, is
+// refused before the adapter starts (the message is shown; the window never waits on it).
+// The viewer may be sent anywhere in the animation, so the whole of [0, 1] is checked; the
+// surface is left at `time`.
+void check_workload(const SimulationControls& c, Surface& surface, double time) {
+  const AdaptOptions o = adapt_options(c);
+  WorkloadBudget budget;
+  budget.threshold = o.threshold;
+  budget.density = o.density;
+  budget.max_triangles = static_cast<double>(o.max_triangles);
+  budget.max_samples = static_cast<double>(o.max_samples);
+  budget.hopeless = c.scene == "expr" ? 1.0 : 10.0;
+  const WorkloadWords words{"T", "density", "the triangle budget", "the sample budget"};
+  const std::string reason = workload_refusal(surface, budget, 0.0, 1.0, words);
+  surface.set_time(time);
+  if (!reason.empty()) throw std::invalid_argument("scene " + c.scene + " " + reason);
 }
 
 }  // namespace
@@ -78,7 +98,7 @@ void Simulation::rebuild(const StepRequest& request) {
   adapter_.reset();
   surface_ = std::move(surface);
   built_ = c;  // also when the adapter fails below: surface_ matches c
-  surface_->set_time(request.time);
+  check_workload(c, *surface_, request.time);
   adapter_ = std::make_unique<Adapter>(*surface_, adapt_options(c), criteria_for(c, *surface_));
   adapter_->initialize();
 }
@@ -112,6 +132,7 @@ StepResult Simulation::step(const StepRequest& request) {
     } else {
       const bool retune = !same_adaptation(c, built_);
       if (retune) {
+        check_workload(c, *surface_, surface_->time());
         adapter_->set_options(adapt_options(c), criteria_for(c, *surface_));
         built_ = c;
       }

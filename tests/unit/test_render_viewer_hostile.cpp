@@ -6,6 +6,7 @@
 
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,9 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "app/viewer/simulation.h"
 #include "app/viewer/viewer_args.h"
 #include "app/viewer/viewer_state.h"
 #include "test_render_scratch.h"
+#include "test_render_step_request.h"
 
 namespace dynamesh {
 namespace {
@@ -56,13 +59,18 @@ TEST(ViewerHostile, CommandLineValuesAreCheckedAsTheCliChecksThem) {
 // from the defaults with a notice).
 TEST(ViewerHostile, SavedValuesAreCheckedLikeCommandLineValues) {
   const fs::path dir = test::render_scratch("viewer_hostile_state");
-  const std::vector<std::pair<std::string, std::string>> bad = {
-      {"smooth_iterations", "2147483647"}, {"camera.distance", "-5"},
-      {"camera.distance", "1e38"},         {"camera.fov_y_degrees", "0"},
-      {"camera.fov_y_degrees", "180"},     {"wire_width", "1e30"},
-      {"scene", std::string(20000, 'x')},  {"density", "0"},
-      {"steps", "0"},                      {"camera.rotation", "0 0 0 0"},
-      {"record_fps", "0"},                 {"threshold", "-1"}};
+  const std::vector<std::pair<std::string, std::string>> bad = {{"smooth_iterations", "2147483647"},
+                                                                {"camera.distance", "-5"},
+                                                                {"camera.distance", "1e38"},
+                                                                {"camera.fov_y_degrees", "0"},
+                                                                {"camera.fov_y_degrees", "180"},
+                                                                {"wire_width", "1e30"},
+                                                                {"scene", std::string(20000, 'x')},
+                                                                {"density", "0"},
+                                                                {"steps", "0"},
+                                                                {"camera.rotation", "0 0 0 0"},
+                                                                {"record_fps", "0"},
+                                                                {"threshold", "-1"}};
   for (const auto& [key, value] : bad) {
     const fs::path file = dir / "viewer.conf";
     std::ofstream(file) << "scene = sinc\n" << key << " = " << value << "\n";
@@ -109,14 +117,65 @@ TEST(ViewerHostile, StartsWhateverItsSavedStateHolds) {
   // The 20,000-character scene name that aborted ImGui at every start.
   std::ofstream(state) << "scene = " << std::string(20000, 'x') << "\nsmooth_iterations = 2\n";
   const fs::path shot = dir / "shot.png";
-  const ViewerRun r = run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" +
-                               shot.string() + "'",
-                           dir / "log.txt");
+  const ViewerRun r =
+      run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" + shot.string() + "'",
+                 dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output.substr(0, 2000);
   EXPECT_NE(r.output.find("ignoring the saved settings in"), std::string::npos)
       << r.output.substr(0, 2000);
   EXPECT_TRUE(fs::exists(shot));
   EXPECT_LT(r.output.size(), 4000u);  // the name is not echoed whole
+}
+
+// The formulas and settings that hung the CLI hang the viewer's worker the same way (a window
+// that never shows a mesh, a scripted run that never ends): the same up-front workload check
+// refuses them with its reason in the panel, and a scripted run exits 2.
+TEST(ViewerHostile, SurfacesThatWouldHangAreRefusedWithTheReason) {
+  const fs::path dir = test::render_scratch("viewer_hostile_workload");
+  struct Case {
+    std::string name, options, reason;
+  };
+  const std::vector<Case> cases = {
+      {"overflow", "--scene expr --height-field 'exp(700*x)'", "not finite"},
+      {"ripples", "--scene expr --height-field 'sin(1000*x)'", "more than the triangle budget"},
+      {"tiny_threshold", "--scene sphere --threshold 1e-6", "more than the triangle budget"},
+  };
+  for (const Case& c : cases) {
+    const fs::path shot = dir / (c.name + ".png");
+    const auto start = std::chrono::steady_clock::now();
+    const ViewerRun r = run_viewer("--fresh --width 900 --height 600 " + c.options +
+                                       " --frames 2 --screenshot '" + shot.string() + "'",
+                                   dir / (c.name + ".txt"));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.status, 2) << c.name << ": " << r.output.substr(0, 2000);
+    const std::size_t shown = r.output.find("error shown: ");
+    ASSERT_NE(shown, std::string::npos) << c.name << ": " << r.output.substr(0, 2000);
+    EXPECT_NE(r.output.find(c.reason, shown), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_LT(seconds, 40.0) << c.name;  // xvfb-run's start included
+  }
+}
+
+// A control changed while the mesh runs (T lowered on its slider) is checked before the
+// adapter refines for it: the message comes back at once and the next sensible value works.
+TEST(ViewerHostile, AThresholdNoBudgetCanMeetIsRefusedBeforeRefining) {
+  Simulation sim;
+  SimulationControls c;
+  c.scene = "sphere";
+  ASSERT_TRUE(sim.step(test::at(0.2, c)).error.empty());
+  c.threshold = 1e-6;
+  c.epsilon = 2.5e-7;
+  const auto start = std::chrono::steady_clock::now();
+  const StepResult refused = sim.step(test::at(0.2, c));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_NE(refused.error.find("more than the triangle budget"), std::string::npos)
+      << refused.error;
+  EXPECT_FALSE(refused.snapshot);
+  c.threshold = 0.004;
+  c.epsilon = 0.001;
+  const StepResult finer = sim.step(test::at(0.2, c));
+  EXPECT_TRUE(finer.error.empty()) << finer.error;
+  EXPECT_GT(finer.stats.triangles, 0u);
 }
 
 }  // namespace

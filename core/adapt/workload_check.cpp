@@ -1,0 +1,57 @@
+#include "core/adapt/workload_check.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/adapt/workload_estimate.h"
+
+namespace dynamesh {
+namespace {
+
+std::string short_number(double x) {
+  std::ostringstream s;
+  s.precision(2);
+  s << x;
+  return s.str();
+}
+
+std::string whole(double x) {
+  return std::to_string(std::llround(x));
+}
+
+std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b,
+                    const WorkloadWords& words) {
+  if (!w.problem.empty()) return w.problem;
+  if (w.triangles > b.hopeless * b.max_triangles)
+    return "the surface needs at least about " + short_number(w.triangles) + " triangles at " +
+           words.threshold + " " + short_number(b.threshold) + " (curvature integral " +
+           short_number(w.curvature) + " over area " + short_number(w.area) + "), more than " +
+           words.max_triangles + " " + whole(b.max_triangles) + "; raise " + words.threshold +
+           " or the budget";
+  if (w.samples > b.max_samples)
+    return "the surface needs about " + short_number(w.samples) + " samples (" + words.density +
+           " " + short_number(b.density) + " over area " + short_number(w.area) + "), more than " +
+           words.max_samples + " " + whole(b.max_samples) + "; lower " + words.density +
+           " or raise the budget";
+  return {};
+}
+
+}  // namespace
+
+std::string workload_refusal(Surface& surface, const WorkloadBudget& budget, double t_first,
+                             double t_last, const WorkloadWords& words, int checks) {
+  if (t_first == t_last) checks = 1;
+  std::string reason;
+  for (int c = 0; c < checks && reason.empty(); ++c) {
+    const double t = checks == 1 ? t_first : t_first + (t_last - t_first) * c / (checks - 1);
+    surface.set_time(t);
+    reason =
+        refusal(estimate_workload(surface, budget.threshold, budget.density, budget.max_triangles),
+                budget, words);
+    if (!reason.empty()) reason = "at t = " + short_number(t) + ": " + reason;
+  }
+  surface.set_time(t_first);
+  return reason;
+}
+
+}  // namespace dynamesh
