@@ -59,8 +59,32 @@ std::unique_ptr<Surface> build_scene(RunOptions& o, std::ostream& log) {
   }
 }
 
+// Every file the run has written so far, so that a run that fails part way (a formula that
+// turns bad at a later time) leaves none of its output behind: bad input, no output file.
+// A run that ends by an exception (also before its first step: a refusal after the output
+// directories were made) removes them as it unwinds; a finished run calls keep().
+class RunOutputs {
+ public:
+  RunOutputs() = default;
+  RunOutputs(const RunOutputs&) = delete;
+  RunOutputs& operator=(const RunOutputs&) = delete;
+  ~RunOutputs() { remove_all(); }
+  void add(std::string path) { paths_.push_back(std::move(path)); }
+  void keep() { paths_.clear(); }
+  // Newest first, so that a directory the run created goes after its frames (fs::remove
+  // leaves a directory that is not empty).
+  void remove_all() {
+    std::error_code ignored;
+    for (auto p = paths_.rbegin(); p != paths_.rend(); ++p) fs::remove(*p, ignored);
+    paths_.clear();
+  }
+
+ private:
+  std::vector<std::string> paths_;
+};
+
 // Fails early, before any work, when an output cannot be written.
-void check_outputs(const RunOptions& o) {
+void check_outputs(const RunOptions& o, RunOutputs& written) {
   if (!o.export_final_path.empty()) {
     const std::string ext = fs::path(o.export_final_path).extension().string();
     if (ext != ".ply" && ext != ".obj")
@@ -74,9 +98,10 @@ void check_outputs(const RunOptions& o) {
   for (const std::string* dir : {&o.export_dir, &o.render_dir}) {
     if (dir->empty()) continue;
     std::error_code ec;
-    fs::create_directories(*dir, ec);
+    const bool created = fs::create_directories(*dir, ec);
     if (ec || !fs::is_directory(*dir))
       throw UsageError("cannot create directory " + *dir + ": " + ec.message());
+    if (created) written.add(*dir);  // a failed run leaves no empty directory behind
   }
 }
 
@@ -158,21 +183,6 @@ SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
   return f;
 }
 
-// Every file the run has written so far, so that a run that fails part way (a formula that
-// turns bad at a later time) leaves none of its output behind: bad input, no output file.
-class RunOutputs {
- public:
-  void add(std::string path) { paths_.push_back(std::move(path)); }
-  void remove_all() {
-    std::error_code ignored;
-    for (const std::string& p : paths_) fs::remove(p, ignored);
-    paths_.clear();
-  }
-
- private:
-  std::vector<std::string> paths_;
-};
-
 std::string frame_name(const std::string& dir, std::uint64_t step, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%05llu.%s", static_cast<unsigned long long>(step), ext);
@@ -223,7 +233,16 @@ class FrameRenderer {
   void draw(const MeshSnapshot& snap, std::uint64_t step) {
     if (!renderer_) renderer_ = std::make_unique<OffscreenRenderer>();
     const std::string path = frame_name(dir_, step, "png");
-    renderer_->render_to_png(snap, options_, path);
+    try {
+      renderer_->render_to_png(snap, options_, path);
+    } catch (const std::runtime_error& e) {
+      // A frame size the OpenGL implementation cannot make (--size 16384x16384) is bad input,
+      // found at the first frame.
+      if (frames_ > 0 || std::string(e.what()).rfind("render target", 0) != 0) throw;
+      throw UsageError("--size " + std::to_string(options_.width) + "x" +
+                       std::to_string(options_.height) + ": " + e.what() +
+                       "; choose a smaller size");
+    }
     outputs_.add(path);
     ++frames_;
   }
@@ -332,7 +351,8 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
   if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
   if (o.steps == 0) o.keyframes.resize(1);  // adapt once, at the first time
   std::unique_ptr<Surface> surface = build_scene(o, log);
-  check_outputs(o);
+  RunOutputs written;
+  check_outputs(o, written);
   std::unique_ptr<StatsCsvWriter> csv;
   if (!o.stats_path.empty()) {
     try {
@@ -343,7 +363,6 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
   }
 
   const SnapshotFields fields = fields_for(o, *surface);
-  RunOutputs written;
   std::unique_ptr<FrameRenderer> frames;
   if (!o.render_dir.empty())
     frames = std::make_unique<FrameRenderer>(o, o.adapt.threshold, written);
@@ -382,6 +401,7 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     written.remove_all();
     throw;
   }
+  written.keep();
   summary.last = adapter.stats();
   if (step_seconds.empty()) step_seconds.push_back(summary.last.seconds.total);
   std::nth_element(step_seconds.begin(), step_seconds.begin() + step_seconds.size() / 2,

@@ -108,6 +108,9 @@ AtomicFile::AtomicFile(std::string path, std::ios::openmode mode) : path_(std::m
   if (!direct_ && std::filesystem::is_symlink(std::filesystem::symlink_status(path_, ec)))
     target_ = std::filesystem::canonical(path_, ec).string();
   if (target_.empty()) target_ = path_;
+  // A directory would only refuse the rename at the end of the run (issue 15): say so now.
+  if (!direct_ && std::filesystem::is_directory(target_, ec))
+    throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(EISDIR));
   // A special file is opened without truncation (a FIFO or a device has nothing to cut).
   partial_ = direct_ ? path_ : target_ + ".partial";
   file_.open(partial_, direct_ ? (mode | std::ios::out) : (mode | std::ios::out | std::ios::trunc));

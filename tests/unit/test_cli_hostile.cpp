@@ -30,7 +30,6 @@ struct Outcome {
   double seconds = 0;
 };
 
-
 Outcome run(const std::vector<std::string>& args, int limit = kLimitSeconds) {
   static const fs::path dir = test::scratch_dir("cli_hostile");
   const fs::path err = dir / "stderr.txt";
@@ -128,12 +127,12 @@ TEST(CliHostile, NiftiHeadersWithAbsurdPlacementsAreRefused) {
 
 TEST(CliHostile, NiftiDataThatDoesNotMatchTheHeaderIsRefused) {
   // A 352-byte file claiming 1290^3 voxels; one claiming 600^3 float64 (1.7 GB).
-  expect_refused(mri(write_volume("huge.nii", test::make_header({1290, 1290, 1290}, DT_INT16, 16),
-                                  {})),
-                 "volume too large");
-  expect_refused(mri(write_volume("f64.nii", test::make_header({600, 600, 600}, DT_FLOAT64, 64),
-                                  {})),
-                 "truncated data");
+  expect_refused(
+      mri(write_volume("huge.nii", test::make_header({1290, 1290, 1290}, DT_INT16, 16), {})),
+      "volume too large");
+  expect_refused(
+      mri(write_volume("f64.nii", test::make_header({600, 600, 600}, DT_FLOAT64, 64), {})),
+      "truncated data");
   // dim1 = 32767 on a 16^3 volume's data.
   expect_refused(mri(write_volume("wide.nii", test::make_header({32767, 16, 16}, DT_INT16, 16))),
                  "truncated data");
@@ -158,8 +157,8 @@ TEST(CliHostile, NiftiDataThatDoesNotMatchTheHeaderIsRefused) {
 
 std::vector<std::string> implicit(const std::string& formula,
                                   const std::string& bounds = "-1.5,-1.5,-1.5,1.5,1.5,1.5") {
-  return {"run", "--scene", "expr", "--implicit", formula, "--bounds", bounds, "--steps", "3",
-          "--quiet"};
+  return {"run",      "--scene", "expr",    "--implicit", formula,
+          "--bounds", bounds,    "--steps", "3",          "--quiet"};
 }
 
 std::vector<std::string> height(const std::string& formula) {
@@ -251,8 +250,8 @@ nlohmann::json last_json(const std::string& out) {
 
 TEST(CliHostile, TimeBudgetStopsTheRunAndIsReported) {
   // 2000 steps of the sinc scene take far longer than a second on any machine.
-  const Outcome r = run({"run", "--scene", "sinc", "--steps", "2000", "--max-seconds", "1",
-                         "--quiet"});
+  const Outcome r =
+      run({"run", "--scene", "sinc", "--steps", "2000", "--max-seconds", "1", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_LT(r.seconds, 8.0);
   const nlohmann::json j = last_json(r.out);
@@ -281,11 +280,70 @@ TEST(CliHostile, SampleBudgetStopsRefinementAndIsReported) {
   EXPECT_NE(r.err.find("the sample budget (--max-samples 2000) stopped refinement"),
             std::string::npos)
       << r.err;
-  const Outcome free = run({"run", "--scene", "sphere", "--steps", "0", "--density", "10",
-                            "--quiet"});
+  const Outcome free =
+      run({"run", "--scene", "sphere", "--steps", "0", "--density", "10", "--quiet"});
   ASSERT_EQ(free.status, 0) << free.err;
   EXPECT_FALSE(last_json(free.out)["sample_budget_hit"].get<bool>());
   EXPECT_GT(last_json(free.out)["samples"].get<double>(), 2000);
+}
+
+// In-range scene parameters that hung or gave garbage (sinc kappa = 10, twist r = 5, h = 0.05,
+// turns = 10). The rule: every value in a documented range works, or the range is
+// narrowed to what works. The ranges now end where a default run still works (the next test),
+// so these values are refused at once with the range.
+TEST(CliHostile, SceneParametersThatHungAreOutsideTheirRanges) {
+  const auto param = [](const std::string& scene, const std::string& kv) {
+    return std::vector<std::string>{"run", "--scene", scene, "--param", kv, "--quiet"};
+  };
+  expect_refused(param("sinc", "kappa=10"), "kappa = 10 is outside its range [-10, 2]");
+  expect_refused(param("twist", "r=5"), "r = 5 is outside its range [0.01, 1]");
+  expect_refused(param("twist", "h=0.05"), "h = 0.05 is outside its range [0.5, 5]");
+  expect_refused(param("twist", "turns=10"), "turns = 10 is outside its range [-3, 3]");
+}
+
+// The hardest ends of the narrowed ranges (the most triangles and CPU when measured: 4-11 s of
+// CPU for 50 steps) adapt the whole animation within T + eps, with no budget hit.
+TEST(CliHostile, TheHardestEndsOfTheSceneRangesRun) {
+  const std::vector<std::pair<std::string, std::string>> ends = {{"sinc", "kappa=2"},
+                                                                 {"sinc", "alpha=2"},
+                                                                 {"twist", "p=16"},
+                                                                 {"twist", "turns=-3"},
+                                                                 {"twist", "r=1"}};
+  for (const auto& [scene, kv] : ends) {
+    const Outcome r = run({"run", "--scene", scene, "--param", kv, "--steps", "5", "--quiet"}, 120);
+    ASSERT_EQ(r.status, 0) << scene << " " << kv << "\n" << r.err;
+    const nlohmann::json j = last_json(r.out);
+    EXPECT_LE(j["worst_max_sample_error"].get<double>(), 0.008 + 0.002) << scene << " " << kv;
+    EXPECT_FALSE(j["budget_hit"].get<bool>()) << scene << " " << kv;
+    EXPECT_FALSE(j["sample_budget_hit"].get<bool>()) << scene << " " << kv;
+    EXPECT_EQ(j["steps_done"].get<int>(), 5) << scene << " " << kv;
+  }
+}
+
+// Outputs that cannot be written are refused before the run, and a refused run leaves no
+// directory behind: an existing directory given as --export-final or --stats (it used to fail
+// with exit 1 after the whole run), a frame size the renderer cannot make (exit 1 and an empty
+// directory), a workload refusal after --render made its directory.
+TEST(CliHostile, OutputsThatCannotBeWrittenAreRefusedAndLeaveNothing) {
+  const fs::path dir = test::scratch_dir("cli_hostile_outputs");
+  fs::create_directories(dir / "final.ply");
+  fs::create_directories(dir / "stats.csv");
+  const std::vector<std::string> sphere = {"run", "--scene", "sphere", "--quiet"};
+  auto with = [&sphere](std::vector<std::string> more) {
+    more.insert(more.begin(), sphere.begin(), sphere.end());
+    return more;
+  };
+  expect_refused(with({"--export-final", (dir / "final.ply").string()}), "Is a directory");
+  expect_refused(with({"--stats", (dir / "stats.csv").string()}), "Is a directory");
+  fs::remove_all(dir / "frames");
+  expect_refused(
+      with({"--steps", "1", "--render", (dir / "frames").string(), "--size", "16384x16384"}),
+      "--size 16384x16384");
+  EXPECT_FALSE(fs::exists(dir / "frames"));
+  fs::remove_all(dir / "frames2");
+  expect_refused(with({"--density", "1e12", "--render", (dir / "frames2").string()}),
+                 "--max-samples");
+  EXPECT_FALSE(fs::exists(dir / "frames2"));
 }
 
 }  // namespace
