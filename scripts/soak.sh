@@ -13,7 +13,8 @@
 # Prints one line per scene: RSS near step 1000 and at the end and their ratio, the
 # triangles at both steps, and the mean time per step of cycle 2 against the last cycle.
 # Not part of CI: at full length it takes tens of minutes per scene.
-#   scripts/soak.sh [STEPS] [SCENE...]   (BUILD_DIR, default build; SOAK_DIR keeps the logs)
+#   scripts/soak.sh [STEPS] [SCENE...]   (BUILD_DIR, default build; SOAK_DIR keeps the logs;
+#   SOAK_ARGS: more dynamesh-cli options, e.g. "--param R1=2" for a smaller sphere)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 steps=${1:-10000}
@@ -33,7 +34,8 @@ mkdir -p "$out"
 for scene in "${scenes[@]}"; do
   csv=$out/$scene.csv
   log=$out/$scene.rss
-  "$cli" run --scene "$scene" --keyframes "$keyframes" --steps "$per_segment" --quiet \
+  # shellcheck disable=SC2086 # SOAK_ARGS is a list of options
+  "$cli" run --scene "$scene" --keyframes "$keyframes" --steps "$per_segment" --quiet ${SOAK_ARGS:-} \
     --stats "$csv" >"$out/$scene.json" 2>"$out/$scene.err" &
   pid=$!
   : >"$log"
