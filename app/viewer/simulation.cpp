@@ -31,8 +31,8 @@ CriterionList criteria_for(const SimulationControls& c, const Surface& surface) 
 
 // Issue 15: a surface that no mesh can follow, or that needs more than the budgets, is
 // refused before the adapter starts (the message is shown; the window never waits on it).
-// The viewer may be sent anywhere in the animation, so the whole of [0, 1] is checked; the
-// surface is left at `time`.
+// Everything is checked at the request's time; the budgets over the whole of [0, 1] (the
+// viewer may be sent anywhere). The surface is left at `time`.
 void check_workload(const SimulationControls& c, Surface& surface, double time) {
   const AdaptOptions o = adapt_options(c);
   WorkloadBudget budget;
@@ -42,7 +42,9 @@ void check_workload(const SimulationControls& c, Surface& surface, double time) 
   budget.max_samples = static_cast<double>(o.max_samples);
   budget.hopeless = c.scene == "expr" ? 1.0 : 10.0;
   const WorkloadWords words{"T", "density", "the triangle budget", "the sample budget"};
-  const std::string reason = workload_refusal(surface, budget, 0.0, 1.0, words);
+  std::string reason = workload_refusal(surface, budget, time, time, words);
+  if (reason.empty())  // budgets only: a surface that breaks later shows its mesh until then
+    reason = workload_refusal(surface, budget, 0.0, 1.0, words, 5, false);
   surface.set_time(time);
   if (!reason.empty()) throw std::invalid_argument("scene " + c.scene + " " + reason);
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/adapt/workload_estimate.h"
 
@@ -19,9 +20,9 @@ std::string whole(double x) {
   return std::to_string(std::llround(x));
 }
 
-std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b,
-                    const WorkloadWords& words) {
-  if (!w.problem.empty()) return w.problem;
+std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b, const WorkloadWords& words,
+                    bool problems) {
+  if (!w.problem.empty()) return problems ? w.problem : std::string();
   if (w.triangles > b.hopeless * b.max_triangles)
     return "the surface needs at least about " + short_number(w.triangles) + " triangles at " +
            words.threshold + " " + short_number(b.threshold) + " (curvature integral " +
@@ -39,15 +40,20 @@ std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b,
 }  // namespace
 
 std::string workload_refusal(Surface& surface, const WorkloadBudget& budget, double t_first,
-                             double t_last, const WorkloadWords& words, int checks) {
+                             double t_last, const WorkloadWords& words, int checks, bool problems) {
   if (t_first == t_last) checks = 1;
   std::string reason;
   for (int c = 0; c < checks && reason.empty(); ++c) {
     const double t = checks == 1 ? t_first : t_first + (t_last - t_first) * c / (checks - 1);
-    surface.set_time(t);
+    try {
+      surface.set_time(t);
+    } catch (const std::invalid_argument&) {
+      if (problems) throw;
+      continue;
+    }
     reason =
         refusal(estimate_workload(surface, budget.threshold, budget.density, budget.max_triangles),
-                budget, words);
+                budget, words, problems);
     if (!reason.empty()) reason = "at t = " + short_number(t) + ": " + reason;
   }
   surface.set_time(t_first);

@@ -32,9 +32,13 @@ struct WorkloadWords {
 
 // Estimates the workload at `checks` evenly spaced times of [t_first, t_last] (one when they
 // are equal) and returns why the surface is refused ("at t = 0.5: the surface needs ..."), or
-// an empty string. Leaves the surface at t_first. Throws what the surface's set_time throws
+// an empty string. Leaves the surface at t_first. With `problems` false only the budgets are
+// judged: a surface that is not finite or not continuous at some time, or whose set_time
+// refuses that time, is left to be found when the mesh gets there (the viewer shows the mesh
+// up to that time). Otherwise throws what the surface's set_time throws
 // (std::invalid_argument: its own checks at a later time).
 std::string workload_refusal(Surface& surface, const WorkloadBudget& budget, double t_first,
-                             double t_last, const WorkloadWords& words = {}, int checks = 5);
+                             double t_last, const WorkloadWords& words = {}, int checks = 5,
+                             bool problems = true);
 
 }  // namespace dynamesh

@@ -108,7 +108,7 @@ TEST(SceneRegistry, UnknownParameterListsTheValidOnes) {
 TEST(SceneRegistry, OutOfRangeValueGivesTheRange) {
   const std::string e = error_of([] { make_scene("twist", {{"p", 1.0}}); });
   EXPECT_TRUE(contains(e, "p = 1")) << e;
-  EXPECT_TRUE(contains(e, "[2, 32]")) << e;
+  EXPECT_TRUE(contains(e, "[2, 16]")) << e;
   EXPECT_FALSE(error_of([] { make_scene("sinc", {{"beta", -1.0}}); }).empty());
   EXPECT_FALSE(error_of([] { make_scene("sinc", {{"beta", std::nan("")}}); }).empty());
 }
