@@ -4,6 +4,7 @@
 // --frames N shows N frames, steps 0 .. N-1; Esc quits and saves; --version.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +150,106 @@ TEST(ViewerContract, EscapeQuitsAndSaves) {
       << raw << ": " << test::slurp_text(dir / "log.txt");
   const std::string saved = test::slurp_text(state);
   EXPECT_NE(saved.find("scene = sinc"), std::string::npos) << saved;
+}
+
+// One "key value" line of the viewer's widget report (app/viewer/widget_report.h); NaN when
+// absent.
+double reported(const std::string& report, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(report, m, std::regex("(^|\n)" + key + " ([^\n]+)"))) return std::nan("");
+  return std::stod(m[2]);
+}
+
+TEST(ViewerContract, SlidersTakeEffect) {
+  const fs::path dir = test::render_scratch("viewer_sliders");
+  const fs::path state = dir / "viewer.conf", report = dir / "report.txt";
+  // An interactive session driven with a real mouse and keyboard (xdotool): the viewer
+  // reports where its sliders are and what it shows (DYNAMESH_WIDGET_REPORT). Each slider is
+  // Ctrl-clicked, a value typed and Enter pressed (a log slider applies on release/Enter);
+  // then Restart and three steps (">") measure the run with the new value, so each
+  // measurement differs from the one before it in that one control alone.
+  const fs::path script = dir / "sliders.sh";
+  std::ofstream(script)
+      << "report='" << report.string() << "'\n"
+      << "DYNAMESH_WIDGET_REPORT=\"$report\" '" << DYNAMESH_VIEWER << "' --state '"
+      << state.string()
+      << "' --fresh --scene capsule-bend --t0 0.2 --t1 0.3 --steps 4 --smooth-iters 3 "
+         "--width 1000 --height 760 &\n"
+      << "pid=$!\n"
+      << "val() { awk -v k=\"$1\" '$1==k {print $2}' \"$report\" 2>/dev/null; }\n"
+      // Waits (at most 60 s) until the viewer took more than $1 results and is idle.
+      << "settle() {\n"
+      << "  for i in $(seq 240); do\n"
+      << "    kill -0 $pid 2>/dev/null || return 1\n"
+      << "    r=$(val results); b=$(val busy)\n"
+      << "    [ -n \"$r\" ] && [ \"$r\" -gt \"$1\" ] && [ \"$b\" = 0 ] && [ -n \"$(val "
+         "triangles)\" ] "
+         "&& return 0\n"
+      << "    sleep 0.25\n"
+      << "  done\n"
+      << "  return 1\n"
+      << "}\n"
+      << "centre() { awk -v k=\"$1\" '$1==\"widget\" && $2==k {print int(($3+$5)/2), "
+         "int(($4+$6)/2)}' \"$report\"; }\n"
+      << "click() { set -- $(centre \"$1\"); [ -n \"$2\" ] || exit 3; r=$(val results)\n"
+      << "  xdotool mousemove --window $w $1 $2 click 1; settle $r || exit 4; }\n"
+      << "slider() { set -- $(centre \"$1\") \"$2\"; [ -n \"$2\" ] || exit 5\n"
+      // Keys are held as a person holds them: ImGui 1.86 reads the keys that are down when a
+      // frame starts, so a press and release within one frame would be lost.
+      << "  xdotool mousemove --window $w $1 $2 keydown ctrl; sleep 0.3; xdotool click 1\n"
+      << "  sleep 0.3; xdotool keyup ctrl; sleep 0.3; r=$(val results)\n"
+      << "  xdotool type --delay 50 \"$3\"; xdotool keydown Return; sleep 0.3; xdotool keyup "
+         "Return\n"
+      << "  settle $r || exit 6; }\n"
+      << "measure() { click Restart; for s in 1 2 3; do click step_forward; done\n"
+      << "  cp \"$report\" \"$report.$1\"; }\n"
+      << "settle 0 || exit 2\n"
+      << "w=$(xdotool search --sync --name dynamesh | head -1)\n"
+      << "xdotool windowfocus $w 2>/dev/null\n"
+      << "measure base\n"
+      << "slider k 8; measure k8\n"
+      << "slider k 0; measure k0\n"
+      << "slider density 8000; measure dense\n"
+      << "slider epsilon 0.0075; measure wide\n"
+      << "slider threshold_T 0.002; measure fine\n"
+      << "xdotool key --window $w Escape\n"
+      << "for i in $(seq 60); do kill -0 $pid 2>/dev/null || break; sleep 0.5; done\n"
+      << "if kill -0 $pid 2>/dev/null; then kill $pid; exit 9; fi\n"
+      << "wait $pid\n";
+  const std::string command = "xvfb-run -a -s '-screen 0 1280x900x24' sh '" + script.string() +
+                              "' > '" + (dir / "log.txt").string() + "' 2>&1";
+  const int raw = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0)
+      << raw << ": " << test::slurp_text(dir / "log.txt");
+  const auto read = [&](const char* name) {
+    return test::slurp_text(report.string() + "." + name);
+  };
+  const std::string base = read("base"), k8 = read("k8"), k0 = read("k0"), dense = read("dense"),
+                    wide = read("wide"), fine = read("fine");
+  // Each slider holds the typed value (eps follows T: 0.0075 * 0.002 / 0.008).
+  EXPECT_EQ(reported(k8, "k"), 8);
+  EXPECT_EQ(reported(k0, "k"), 0);
+  EXPECT_EQ(reported(dense, "density"), 8000);
+  EXPECT_EQ(reported(wide, "epsilon"), 0.0075);
+  EXPECT_EQ(reported(fine, "threshold"), 0.002);
+  // Typing "0.002" passes through 0: the band must keep its width relative to T.
+  EXPECT_NEAR(reported(fine, "epsilon"), 0.001875, 1e-9);
+  for (const std::string* r : {&base, &k8, &k0, &dense, &wide, &fine})
+    EXPECT_EQ(reported(*r, "step"), 3) << *r;
+  // k = 0 is plain tangential smoothing: rounder triangles than k = 8, which holds the
+  // vertices where the surface curves (as dynamesh-cli run --k).
+  EXPECT_LT(reported(k0, "mean_aspect"), reported(k8, "mean_aspect")) << k0 << k8;
+  // Four times the density: more than three times the samples.
+  EXPECT_GT(reported(dense, "samples"), 3 * reported(k0, "samples")) << dense << k0;
+  // A wide band splits only above T + eps: fewer triangles.
+  EXPECT_LT(reported(wide, "triangles"), reported(dense, "triangles")) << wide << dense;
+  // A quarter of T: well over twice the triangles.
+  EXPECT_GT(reported(fine, "triangles"), 2.5 * reported(wide, "triangles")) << fine << wide;
+  // Esc saved what the sliders hold.
+  const std::string saved = test::slurp_text(state);
+  EXPECT_NE(saved.find("threshold = 0.002\n"), std::string::npos) << saved;
+  EXPECT_NE(saved.find("k = 0\n"), std::string::npos) << saved;
+  EXPECT_NE(saved.find("density = 8000\n"), std::string::npos) << saved;
 }
 
 TEST(ViewerContract, VersionIsPrinted) {
