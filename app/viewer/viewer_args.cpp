@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/io/number_text.h"
 #include "app/render/color_scale.h"
+#include "core/io/number_text.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -46,8 +46,7 @@ void validate_state(const ViewerState& s) {
   for (const SceneInfo& info : list_scenes()) known = known || info.name == c.scene;
   if (!known) {
     const std::string shown = c.scene.size() > 40 ? c.scene.substr(0, 40) + "..." : c.scene;
-    throw std::invalid_argument("unknown scene '" + shown + "' (" +
-                                std::to_string(c.scene.size()) +
+    throw std::invalid_argument("unknown scene '" + shown + "' (" + std::to_string(c.scene.size()) +
                                 " characters; dynamesh-cli scenes lists them)");
   }
   if (!(std::isfinite(c.threshold) && c.threshold > 0))
@@ -169,9 +168,10 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         std::string names;
         for (const SceneInfo& info : scenes) names += (names.empty() ? "" : ", ") + info.name;
         throw std::invalid_argument(
-            "unknown scene '" + (name.size() > 40 ? name.substr(0, 40) + "...' (" +
-                                                        std::to_string(name.size()) + " characters)"
-                                                  : name + "'") +
+            "unknown scene '" +
+            (name.size() > 40
+                 ? name.substr(0, 40) + "...' (" + std::to_string(name.size()) + " characters)"
+                 : name + "'") +
             " (scenes: " + names + ")");
       }
       switch_scene(s, name);
@@ -285,12 +285,11 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
   if (!s.keyframes.empty()) {
-    s.t0 = *std::min_element(s.keyframes.begin(), s.keyframes.end());
-    s.t1 = *std::max_element(s.keyframes.begin(), s.keyframes.end());
     s.playhead = 0;
     s.time = s.keyframes.front();
   }
-  s.time = std::clamp(s.time, s.t0, s.t1);
+  const auto [first, last] = s.time_range();
+  s.time = std::clamp(s.time, first, last);
   s.style.colors.threshold = s.controls.threshold;
   return a;
 }

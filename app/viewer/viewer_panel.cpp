@@ -108,7 +108,8 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
 void note_widget(PanelActions& a, const PanelInfo& info, const char* label) {
   if (!info.report_widgets) return;
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  a.widgets.push_back({label, lo.x, lo.y, std::min(hi.x, lo.x + ImGui::CalcItemWidth()), hi.y});
+  a.widgets.push_back({label, lo.x, lo.y, std::min(hi.x, lo.x + ImGui::CalcItemWidth()), hi.y,
+                       ImGui::IsItemActive()});
 }
 
 // A slider for a setting that spans decades (T, eps, density): logarithmic, committed when
@@ -187,7 +188,8 @@ void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   ImGui::SameLine();
   ImGui::Checkbox("loop", &s.loop);
   float t = static_cast<float>(s.time);
-  if (ImGui::SliderFloat("time", &t, static_cast<float>(s.t0), static_cast<float>(s.t1))) {
+  const auto [first, last] = s.time_range();
+  if (ImGui::SliderFloat("time", &t, static_cast<float>(first), static_cast<float>(last))) {
     s.time = t;
     a.controls_changed = true;
   }

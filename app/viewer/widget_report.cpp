@@ -27,6 +27,7 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
     std::string label = w.label;
     std::replace(label.begin(), label.end(), ' ', '_');
     out << "widget " << label << ' ' << w.x0 << ' ' << w.y0 << ' ' << w.x1 << ' ' << w.y1 << '\n';
+    if (w.active) out << "active " << label << '\n';
   }
   out << "threshold " << controls.threshold << "\nepsilon " << controls.epsilon << "\ndensity "
       << controls.density << "\nk " << controls.k << "\nresults " << shown.results << "\nbusy "

@@ -3,6 +3,7 @@
 // hard-coded pixels, and see what they did. Written only when the environment names a file:
 // DYNAMESH_WIDGET_REPORT=FILE (viewer_app.cpp); one "key value..." line each:
 //   widget LABEL X0 Y0 X1 Y1   a widget's rectangle in window pixels (spaces in LABEL: '_')
+//   active LABEL               the widget being dragged or typed into, if any
 //   threshold T, epsilon E, density D, k K   the controls as the panel holds them
 //   results N, busy 0|1        results taken so far; whether a step is being computed
 //   step S, triangles N, mean_aspect A   the mesh on screen (A: mean R / 2r, measured here)
@@ -21,6 +22,7 @@ namespace dynamesh {
 struct WidgetRect {
   std::string label;
   float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool active = false;  // being dragged or typed into
 };
 
 struct ShownState {

@@ -44,6 +44,13 @@ Outcome viewer(const std::string& options, const fs::path& dir, const std::strin
   return r;
 }
 
+// A number of a saved state file ("key = value" lines); NaN when absent.
+double saved_number(const std::string& saved, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(saved, m, std::regex("(^|\n)" + key + " = ([^\n]+)"))) return std::nan("");
+  return std::stod(m[2]);
+}
+
 TEST(ViewerContract, ScriptedRunsWithBadInputExitTwo) {
   const fs::path dir = test::render_scratch("viewer_bad");
   const fs::path shot = dir / "x.png";
@@ -93,6 +100,18 @@ TEST(ViewerContract, KeyframesSweepThereAndBack) {
   ASSERT_EQ(back.status, 0) << back.output;
   EXPECT_EQ(back.last_step, 4);
   EXPECT_GT(back.triangles, 2 * there.triangles) << there.output << back.output;
+}
+
+TEST(ViewerContract, KeyframesLeaveTheSavedIntervalAlone) {
+  const fs::path dir = test::render_scratch("viewer_keyframes_saved");
+  const fs::path state = dir / "viewer.conf";
+  const std::string file = "--state '" + state.string() + "' ";
+  ASSERT_EQ(viewer(file + "--fresh --scene sinc --t0 0.1 --t1 0.9 --frames 1", dir, "a").status, 0);
+  // A sweep for this session: the person's t0 .. t1 is what the next session opens with.
+  ASSERT_EQ(viewer(file + "--keyframes 0.25,0.5,0.25 --steps 2 --frames 3", dir, "b").status, 0);
+  const std::string saved = test::slurp_text(state);
+  EXPECT_NEAR(saved_number(saved, "t0"), 0.1, 1e-12) << saved;
+  EXPECT_NEAR(saved_number(saved, "t1"), 0.9, 1e-12) << saved;
 }
 
 TEST(ViewerContract, EachSceneOpensAtItsOwnSettings) {
@@ -182,9 +201,8 @@ TEST(ViewerContract, SlidersTakeEffect) {
       << "  for i in $(seq 240); do\n"
       << "    kill -0 $pid 2>/dev/null || return 1\n"
       << "    r=$(val results); b=$(val busy)\n"
-      << "    [ -n \"$r\" ] && [ \"$r\" -gt \"$1\" ] && [ \"$b\" = 0 ] && [ -n \"$(val "
-         "triangles)\" ] "
-         "&& return 0\n"
+      << "    [ -n \"$r\" ] && [ \"$r\" -gt \"$1\" ] && [ \"$b\" = 0 ] &&\n"
+      << "      [ -n \"$(val triangles)\" ] && return 0\n"
       << "    sleep 0.25\n"
       << "  done\n"
       << "  return 1\n"
@@ -193,14 +211,20 @@ TEST(ViewerContract, SlidersTakeEffect) {
          "int(($4+$6)/2)}' \"$report\"; }\n"
       << "click() { set -- $(centre \"$1\"); [ -n \"$2\" ] || exit 3; r=$(val results)\n"
       << "  xdotool mousemove --window $w $1 $2 click 1; settle $r || exit 4; }\n"
-      << "slider() { set -- $(centre \"$1\") \"$2\"; [ -n \"$2\" ] || exit 5\n"
-      // Keys are held as a person holds them: ImGui 1.86 reads the keys that are down when a
-      // frame starts, so a press and release within one frame would be lost.
-      << "  xdotool mousemove --window $w $1 $2 keydown ctrl; sleep 0.3; xdotool click 1\n"
-      << "  sleep 0.3; xdotool keyup ctrl; sleep 0.3; r=$(val results)\n"
-      << "  xdotool type --delay 50 \"$3\"; xdotool keydown Return; sleep 0.3; xdotool keyup "
-         "Return\n"
-      << "  settle $r || exit 6; }\n"
+      // Keys are held as a person holds them (ImGui 1.86 reads the keys that are down when a
+      // frame starts: a press and release within one frame is lost), and repeated until the
+      // report shows their effect: Ctrl-click until the slider takes typing, Enter until it
+      // lets go.
+      << "active() { [ \"$(awk '$1==\"active\" {print $2}' \"$report\")\" = \"$1\" ]; }\n"
+      << "hold() { xdotool keydown $1; sleep 0.3; xdotool keyup $1; }\n"
+      << "slider() { set -- $(centre \"$1\") \"$1\" \"$2\"; [ -n \"$4\" ] || exit 5\n"
+      << "  for i in 1 2 3 4 5 6; do\n"
+      << "    xdotool mousemove --window $w $1 $2 keydown ctrl; sleep 0.3; xdotool click 1\n"
+      << "    sleep 0.3; xdotool keyup ctrl; sleep 0.5; active $3 && break\n"
+      << "  done\n"
+      << "  active $3 || exit 6; r=$(val results); xdotool type --delay 50 \"$4\"\n"
+      << "  for i in $(seq 20); do hold Return; sleep 0.2; active $3 || break; done\n"
+      << "  settle $r || exit 7; }\n"
       << "measure() { click Restart; for s in 1 2 3; do click step_forward; done\n"
       << "  cp \"$report\" \"$report.$1\"; }\n"
       << "settle 0 || exit 2\n"
@@ -212,8 +236,7 @@ TEST(ViewerContract, SlidersTakeEffect) {
       << "slider density 8000; measure dense\n"
       << "slider epsilon 0.0075; measure wide\n"
       << "slider threshold_T 0.002; measure fine\n"
-      << "xdotool key --window $w Escape\n"
-      << "for i in $(seq 60); do kill -0 $pid 2>/dev/null || break; sleep 0.5; done\n"
+      << "for i in $(seq 60); do kill -0 $pid 2>/dev/null || break; hold Escape; sleep 0.2; done\n"
       << "if kill -0 $pid 2>/dev/null; then kill $pid; exit 9; fi\n"
       << "wait $pid\n";
   const std::string command = "xvfb-run -a -s '-screen 0 1280x900x24' sh '" + script.string() +
@@ -247,9 +270,10 @@ TEST(ViewerContract, SlidersTakeEffect) {
   EXPECT_GT(reported(fine, "triangles"), 2.5 * reported(wide, "triangles")) << fine << wide;
   // Esc saved what the sliders hold.
   const std::string saved = test::slurp_text(state);
-  EXPECT_NE(saved.find("threshold = 0.002\n"), std::string::npos) << saved;
-  EXPECT_NE(saved.find("k = 0\n"), std::string::npos) << saved;
-  EXPECT_NE(saved.find("density = 8000\n"), std::string::npos) << saved;
+  EXPECT_NEAR(saved_number(saved, "threshold"), 0.002, 1e-15) << saved;
+  EXPECT_NEAR(saved_number(saved, "epsilon"), 0.001875, 1e-9) << saved;
+  EXPECT_EQ(saved_number(saved, "k"), 0) << saved;
+  EXPECT_EQ(saved_number(saved, "density"), 8000) << saved;
 }
 
 TEST(ViewerContract, VersionIsPrinted) {
