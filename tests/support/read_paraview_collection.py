@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Reads a ParaView collection (.pvd) as ParaView would, with VTK's own XML reader.
 
 An independent reader for the test of `dynamesh-cli run --export` (issue 12): the .pvd is
