@@ -464,9 +464,9 @@ bool ViewerApp::save_settings() {
 }
 
 void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets) {
-  const std::string text =
-      widget_report(widgets, state_.controls,
-                    {results_seen_, driver_.busy(), snapshot_.get(), last_stats_.samples});
+  const std::string text = widget_report(widgets, state_.controls,
+                                         {results_seen_, driver_.busy(), snapshot_.get(),
+                                          last_stats_.samples, last_stats_.mean_error});
   if (text == widget_report_written_) return;
   try {
     AtomicFile file(widget_report_path_);  // whole, so a reader never sees half of it

@@ -35,7 +35,7 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
   if (shown.mesh != nullptr) {
     out << "step " << shown.mesh->step << "\ntriangles " << shown.mesh->n_triangles()
         << "\nmean_aspect " << mean_aspect_ratio(*shown.mesh) << "\nsamples " << shown.samples
-        << '\n';
+        << "\nmean_error " << shown.mean_error << '\n';
   }
   return out.str();
 }

@@ -7,7 +7,7 @@
 //   threshold T, epsilon E, density D, k K   the controls as the panel holds them
 //   results N, busy 0|1        results taken so far; whether a step is being computed
 //   step S, triangles N, mean_aspect A   the mesh on screen (A: mean R / 2r, measured here)
-//   samples N                  the adapter's sample count at that step
+//   samples N, mean_error E    the adapter's sample count and mean sampled error then
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,7 @@ struct ShownState {
   bool busy = false;
   const MeshSnapshot* mesh = nullptr;  // null before the first mesh
   std::size_t samples = 0;             // the last step's
+  double mean_error = 0.0;
 };
 
 std::string widget_report(const std::vector<WidgetRect>& widgets,

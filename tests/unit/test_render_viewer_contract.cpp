@@ -1,9 +1,13 @@
 // The viewer's side of the user's contract (issue 12), through the real `dynamesh` under
 // Xvfb: scripted runs that cannot show what they were asked exit 2; --threshold refines;
 // each scene opens at its own settings (mri in millimetres) or the ones last used with it;
-// --frames N shows N frames, steps 0 .. N-1; Esc quits and saves; --version.
+// --frames N shows N frames, steps 0 .. N-1; Esc quits and saves; --version; the sliders
+// (driven with xdotool) and every adaptation and view option move the result the documented
+// way.
 #include <gtest/gtest.h>
+#include <stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +15,7 @@
 #include <iterator>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "test_render_scratch.h"
 
@@ -26,9 +31,10 @@ struct Outcome {
   long frames = -1, last_step = -1;
 };
 
-Outcome viewer(const std::string& options, const fs::path& dir, const std::string& name) {
+Outcome viewer(const std::string& options, const fs::path& dir, const std::string& name,
+               const std::string& environment = "") {
   const fs::path log = dir / (name + ".txt");
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' '" +
+  const std::string command = environment + "xvfb-run -a -s '-screen 0 1280x800x24' '" +
                               std::string(DYNAMESH_VIEWER) + "' --width 900 --height 600 " +
                               options + " > '" + log.string() + "' 2>&1";
   Outcome r;
@@ -274,6 +280,158 @@ TEST(ViewerContract, SlidersTakeEffect) {
   EXPECT_NEAR(saved_number(saved, "epsilon"), 0.001875, 1e-9) << saved;
   EXPECT_EQ(saved_number(saved, "k"), 0) << saved;
   EXPECT_EQ(saved_number(saved, "density"), 8000) << saved;
+}
+
+// A scripted run's last frame as the viewer reports it (widget_report.h): the controls it
+// ran with and the mesh on screen.
+std::string shown(const std::string& options, const fs::path& dir, const std::string& name) {
+  const fs::path report = dir / (name + ".report");
+  const Outcome r =
+      viewer("--fresh " + options, dir, name, "DYNAMESH_WIDGET_REPORT='" + report.string() + "' ");
+  EXPECT_EQ(r.status, 0) << r.output;
+  return test::slurp_text(report);
+}
+
+TEST(ViewerOptions, AdaptationOptionsMoveTheResultTheDocumentedWay) {
+  const fs::path dir = test::render_scratch("viewer_options");
+  // capsule-bend over a short stretch of its motion, 4 frames (steps 0 .. 3).
+  const std::string run = "--scene capsule-bend --t0 0.2 --t1 0.3 --steps 4 --frames 4 ";
+  const auto at = [&](const std::string& options, const std::string& name) {
+    const std::string r = shown(run + options, dir, name);
+    EXPECT_EQ(reported(r, "step"), 3) << name << ": " << r;
+    return r;
+  };
+  // --epsilon: a wide band splits only above T + eps, fewer triangles.
+  const std::string narrow = at("--epsilon 0.0002", "narrow"),
+                    wide = at("--epsilon 0.0075", "wide");
+  EXPECT_EQ(reported(wide, "epsilon"), 0.0075);
+  EXPECT_LT(reported(wide, "triangles"), reported(narrow, "triangles")) << wide << narrow;
+  // --density: four times the samples per unit area, more than three times the samples.
+  const std::string sparse = at("--density 2000", "sparse"), dense = at("--density 8000", "dense");
+  EXPECT_GT(reported(dense, "samples"), 3 * reported(sparse, "samples"));
+  // --k: plain smoothing (0) gives rounder triangles than a curvature-held one (8).
+  const std::string k0 = at("--smooth-iters 3 --k 0", "k0"),
+                    k8 = at("--smooth-iters 3 --k 8", "k8");
+  EXPECT_LT(reported(k0, "mean_aspect"), reported(k8, "mean_aspect")) << k0 << k8;
+  // --smooth-iters: smoothing rounds the triangles; none leaves them as split.
+  const std::string none = at("--smooth-iters 0", "none"), three = at("--smooth-iters 3", "three");
+  EXPECT_LT(reported(three, "mean_aspect"), reported(none, "mean_aspect")) << three << none;
+  // --seed: the same seed, the same run; another, other samples.
+  const std::string seed7 = at("--seed 7", "seed7"), again = at("--seed 7", "again"),
+                    seed8 = at("--seed 8", "seed8");
+  EXPECT_EQ(reported(seed7, "mean_error"), reported(again, "mean_error"));
+  EXPECT_EQ(reported(seed7, "triangles"), reported(again, "triangles"));
+  EXPECT_NE(reported(seed7, "mean_error"), reported(seed8, "mean_error"));
+}
+
+TEST(ViewerOptions, EdgeLengthAndBudget) {
+  const fs::path dir = test::render_scratch("viewer_options_budget");
+  // --edge-length: the sphere's x >= 0 half follows it.
+  const std::string sphere = "--scene sphere --t0 0.2 --frames 1 ";
+  const std::string long_edges = shown(sphere + "--edge-length 0.4", dir, "long"),
+                    short_edges = shown(sphere + "--edge-length 0.1", dir, "short");
+  EXPECT_GT(reported(short_edges, "triangles"), 2 * reported(long_edges, "triangles"));
+  // --max-triangles: held.
+  const std::string sinc = "--scene sinc --t0 0.25 --threshold 0.002 --frames 1 ";
+  const std::string free = shown(sinc, dir, "free"),
+                    held = shown(sinc + "--max-triangles 3000", dir, "held");
+  ASSERT_GT(reported(free, "triangles"), 3000) << free;
+  EXPECT_LE(reported(held, "triangles"), 3000) << held;
+  EXPECT_GT(reported(held, "triangles"), 1000) << held;
+}
+
+// The 3D view of a scripted run's screenshot (900x600; the panel is 340 wide, the colour
+// bar's card the right 130): pixels that differ from the background, their darkness, hue and
+// saturation.
+struct View {
+  int mesh = 0, dark = 0, coloured = 0;  // coloured: saturation > 0.25
+  double saturation = 0;                 // mean over the mesh pixels
+  double hue_p5 = 0, hue_p95 = 0;        // of the coloured mesh pixels (saturation > 0.25), degrees
+};
+
+View look(const std::string& options, const fs::path& dir, const std::string& name) {
+  const fs::path shot = dir / (name + ".png");
+  const Outcome r =
+      viewer("--fresh --frames 1 --screenshot '" + shot.string() + "' " + options, dir, name);
+  EXPECT_EQ(r.status, 0) << r.output;
+  int w = 0, h = 0, n = 0;
+  stbi_uc* pixels = stbi_load(shot.c_str(), &w, &h, &n, 3);
+  View v;
+  if (pixels == nullptr) {
+    ADD_FAILURE() << "no screenshot " << shot;
+    return v;
+  }
+  const stbi_uc* background = pixels + 3 * (5 * w + 345);
+  std::vector<double> hues;
+  for (int y = 5; y < h - 5; ++y)
+    for (int x = 345; x < w - 135; ++x) {
+      const stbi_uc* p = pixels + 3 * (y * w + x);
+      const int diff = std::abs(p[0] - background[0]) + std::abs(p[1] - background[1]) +
+                       std::abs(p[2] - background[2]);
+      if (diff < 24) continue;
+      ++v.mesh;
+      v.dark += p[0] + p[1] + p[2] < 150 ? 1 : 0;
+      const int hi = std::max({p[0], p[1], p[2]}), lo = std::min({p[0], p[1], p[2]});
+      const double sat = hi > 0 ? double(hi - lo) / hi : 0.0;
+      v.saturation += sat;
+      if (sat > 0.25 && hi > lo) {
+        double hue = hi == p[0]   ? 60.0 * (p[1] - p[2]) / (hi - lo)
+                     : hi == p[1] ? 120.0 + 60.0 * (p[2] - p[0]) / (hi - lo)
+                                  : 240.0 + 60.0 * (p[0] - p[1]) / (hi - lo);
+        hues.push_back(hue < 0 ? hue + 360 : hue);
+      }
+    }
+  stbi_image_free(pixels);
+  if (v.mesh > 0) v.saturation /= v.mesh;
+  v.coloured = static_cast<int>(hues.size());
+  if (!hues.empty()) {
+    std::sort(hues.begin(), hues.end());
+    v.hue_p5 = hues[hues.size() / 20];
+    v.hue_p95 = hues[hues.size() * 19 / 20];
+  }
+  return v;
+}
+
+TEST(ViewerOptions, ViewOptionsChangeThePicture) {
+  const fs::path dir = test::render_scratch("viewer_view_options");
+  const std::string sinc = "--scene sinc --t0 0.25 ";
+  // --camera: from above the sinc fills its square; edge on, a thin band. Closer is bigger.
+  const View above = look(sinc + "--color shaded --no-wireframe --camera 0,90", dir, "above");
+  const View edge = look(sinc + "--color shaded --no-wireframe --camera 0,0", dir, "edge");
+  EXPECT_GT(above.mesh, 3 * edge.mesh) << above.mesh << " " << edge.mesh;
+  const View near = look(sinc + "--color shaded --no-wireframe --camera 30,30,3", dir, "near");
+  const View far = look(sinc + "--color shaded --no-wireframe --camera 30,30,6", dir, "far");
+  EXPECT_GT(near.mesh, 2.5 * far.mesh) << near.mesh << " " << far.mesh;
+  // --wireframe / --no-wireframe: the edges are the dark pixels.
+  const View wire = look(sinc + "--color shaded --wireframe --camera 0,90", dir, "wire");
+  EXPECT_GT(wire.dark, 10 * above.dark + 100) << wire.dark << " " << above.dark;
+  // --color: the error map is saturated (yellow to red); shaded is grey-blue.
+  const View error = look(sinc + "--color error --no-wireframe --camera 0,90", dir, "error");
+  EXPECT_GT(error.saturation, above.saturation + 0.2)
+      << error.saturation << " " << above.saturation;
+  // --color-range: each frame's own range spans the bar's hues; a range far wider than the
+  // curvature's (at most 18 here) puts every vertex at the bottom of the bar: one hue.
+  const std::string curvature = sinc + "--color curvature --no-wireframe --camera 0,90 ";
+  const View own = look(curvature + "--color-range frame", dir, "own");
+  const View wide = look(curvature + "--color-range 0,1000", dir, "wide");
+  EXPECT_GT(own.hue_p95 - own.hue_p5, 60) << own.hue_p5 << " " << own.hue_p95;
+  EXPECT_LT(wide.hue_p95 - wide.hue_p5, 15) << wide.hue_p5 << " " << wide.hue_p95;
+  EXPECT_GT(wide.coloured, wide.mesh / 2) << wide.coloured << " of " << wide.mesh;
+}
+
+TEST(ViewerOptions, FrameLogHasARowPerFrame) {
+  const fs::path dir = test::render_scratch("viewer_frame_log");
+  const fs::path log = dir / "frames.csv";
+  const Outcome r =
+      viewer("--fresh --scene sinc --frames 4 --frame-log '" + log.string() + "'", dir, "run");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(log);
+  std::string line;
+  int rows = 0;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) rows += line.empty() ? 0 : 1;
+  EXPECT_EQ(rows, r.frames) << test::slurp_text(log);
+  EXPECT_EQ(rows, 4);
 }
 
 TEST(ViewerContract, VersionIsPrinted) {
