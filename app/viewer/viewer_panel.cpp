@@ -374,7 +374,9 @@ void draw_colorbar_window(const ColorScale& scale, float window_width, float win
     draw->AddText(ImVec2(x0 - 6 - size.x, y - 0.5f * size.y), text, t.c_str());
   };
   if (scale.discrete) {
-    for (int v = static_cast<int>(scale.min + 0.5f); v <= scale.max; ++v) label(v);
+    // At least one and a half lines apart: a deep mesh's levels are thinned.
+    const float line = ImGui::GetTextLineHeight();
+    for (int v : discrete_labels(scale, static_cast<int>(bar_h / (1.5f * line)))) label(v);
   } else {
     for (double f : {0.0, 0.25, 0.5, 0.75, 1.0}) label(scale.min + f * (scale.max - scale.min));
   }
