@@ -184,6 +184,14 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         throw std::invalid_argument(opt + " needs a value, got an empty string");
       return args[++i];
     };
+    // A value's own parser does not know the option it came with: its message gets it.
+    const auto naming_option = [&](auto&& parse) {
+      try {
+        return parse();
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(opt + ": " + e.what());
+      }
+    };
     if (opt == "--help" || opt == "-h") {
       a.help = true;
     } else if (opt == "--version") {
@@ -191,7 +199,7 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--scene") {
       value();  // switched to above
     } else if (opt == "--param") {
-      parameters.push_back(parse_parameter_override(value()));
+      parameters.push_back(naming_option([&] { return parse_parameter_override(value()); }));
     } else if (const char* key = text_option_key(opt, args, i)) {
       text.emplace_back(key, value());
     } else if (opt == "--t0") {
@@ -222,9 +230,9 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--wireframe" || opt == "--no-wireframe") {
       s.style.wireframe = opt == "--wireframe";
     } else if (opt == "--camera") {
-      a.camera = parse_camera_view(value());
+      a.camera = naming_option([&] { return parse_camera_view(value()); });
     } else if (opt == "--color-range") {
-      parse_color_range(value(), s.style.colors);
+      naming_option([&] { return parse_color_range(value(), s.style.colors); });
     } else if (opt == "--k") {
       s.controls.k = to_number(opt, value());
     } else if (opt == "--smooth-iters") {

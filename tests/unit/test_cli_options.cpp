@@ -229,6 +229,30 @@ TEST(CliOptions, PeriodicClosesTheSeam) {
   EXPECT_GT(open, closed + 8) << open << " vs " << closed;
 }
 
+TEST(CliOptions, BadValuesExitTwoWithOneLineNamingTheOption) {
+  // Those test_cli.cpp and test_cli_hostile.cpp do not already refuse.
+  const std::vector<Args> cases = {
+      {"--k", "-1"},
+      {"--smooth-iters", "-1"},
+      {"--edge-length", "-1"},
+      {"--seed", "-1"},
+      {"--export-every", "0"},
+      {"--camera", "1,2,3,4"},
+      {"--color-range", "5,1"},
+      {"--keyframes", "0,2"},
+      {"--scene", "expr", "--parametric", "u;v;0", "--domain", "0,1,0,1", "--periodic", "w"},
+      {"--scene", "expr", "--parametric", "u;v;0", "--domain", "0,1"},
+      {"--scene", "expr", "--implicit", "x^2+y^2+z^2-1", "--bounds", "1,1,1"}};
+  for (const Args& args : cases) {
+    const std::string& named = args[args.size() - 2];
+    SCOPED_TRACE(named);
+    const CliRun r = run_cli(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+  }
+}
+
 TEST(CliOptions, StatedDefaultsChangeNothing) {
   const Args run = scene("sinc") + Args{"--steps", "3"};
   const CliRun bare = ok(run);

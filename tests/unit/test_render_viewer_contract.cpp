@@ -15,6 +15,7 @@
 #include <iterator>
 #include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "test_render_scratch.h"
@@ -432,6 +433,44 @@ TEST(ViewerOptions, FrameLogHasARowPerFrame) {
   while (std::getline(in, line)) rows += line.empty() ? 0 : 1;
   EXPECT_EQ(rows, r.frames) << test::slurp_text(log);
   EXPECT_EQ(rows, 4);
+}
+
+TEST(ViewerContract, BadValuesExitTwoWithOneLineNamingTheOption) {
+  // Refused before a window opens: no display needed.
+  const fs::path dir = test::render_scratch("viewer_bad_values");
+  const std::pair<const char*, const char*> cases[] = {{"--threshold 0", "--threshold"},
+                                                       {"--epsilon 1", "--epsilon"},
+                                                       {"--density 0", "--density"},
+                                                       {"--k -1", "--k"},
+                                                       {"--smooth-iters -1", "--smooth-iters"},
+                                                       {"--edge-length -1", "--edge-length"},
+                                                       {"--max-triangles 1", "--max-triangles"},
+                                                       {"--seed -1", "--seed"},
+                                                       {"--steps 0", "--steps"},
+                                                       {"--t0 0.6 --t1 0.4", "--t0"},
+                                                       {"--keyframes 0,2", "--keyframes"},
+                                                       {"--color rainbow", "--color"},
+                                                       {"--color-range 5,1", "--color-range"},
+                                                       {"--camera 1,2,3,4", "--camera"},
+                                                       {"--param x", "--param"},
+                                                       {"--width 10", "--width"},
+                                                       {"--frames 0", "--frames"},
+                                                       {"--run-for -1", "--run-for"},
+                                                       {"--orbit", "--orbit"},
+                                                       {"--screenshot x.png", "--screenshot"},
+                                                       {"--scene nosuch", "unknown scene"},
+                                                       {"--no-such-option", "--no-such-option"}};
+  for (const auto& [options, named] : cases) {
+    SCOPED_TRACE(options);
+    const fs::path err = dir / "err.txt";
+    const int raw = std::system(("'" + std::string(DYNAMESH_VIEWER) + "' " + options +
+                                 " > /dev/null 2> '" + err.string() + "'")
+                                    .c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << raw;
+    const std::string text = test::slurp_text(err);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    EXPECT_NE(text.find(named), std::string::npos) << text;
+  }
 }
 
 TEST(ViewerContract, VersionIsPrinted) {
