@@ -473,6 +473,32 @@ TEST(ViewerContract, BadValuesExitTwoWithOneLineNamingTheOption) {
   }
 }
 
+TEST(ViewerOptions, ParameterAndTimeChooseTheSurface) {
+  const fs::path dir = test::render_scratch("viewer_surface_options");
+  // sinc at its crest (t = 0.25) needs many triangles; --param alpha=0 flattens it, and
+  // t = 0.5 is its flat moment: both need only the base mesh.
+  const std::string crest = shown("--scene sinc --t0 0.25 --frames 1", dir, "crest");
+  const std::string flat = shown("--scene sinc --t0 0.25 --param alpha=0 --frames 1", dir, "flat");
+  const std::string later = shown("--scene sinc --t0 0.5 --t1 1 --frames 1", dir, "later");
+  EXPECT_GT(reported(crest, "triangles"), 4 * reported(flat, "triangles")) << crest << flat;
+  EXPECT_GT(reported(crest, "triangles"), 4 * reported(later, "triangles")) << crest << later;
+  // --help: exit 0, every option on its usage text.
+  const fs::path help = dir / "help.txt";
+  ASSERT_EQ(
+      std::system(
+          ("'" + std::string(DYNAMESH_VIEWER) + "' --help > '" + help.string() + "'").c_str()),
+      0);
+  const std::string usage = test::slurp_text(help);
+  for (const char* option :
+       {"--scene",        "--param",       "--volume",        "--t0",      "--keyframes",
+        "--steps",        "--threshold",   "--epsilon",       "--density", "--k",
+        "--smooth-iters", "--edge-length", "--max-triangles", "--seed",    "--color",
+        "--play",         "--color-range", "--no-wireframe",  "--camera",  "--width",
+        "--state",        "--fresh",       "--frames",        "--run-for", "--orbit",
+        "--screenshot",   "--record",      "--frame-log",     "--version"})
+    EXPECT_NE(usage.find(option), std::string::npos) << option;
+}
+
 TEST(ViewerContract, VersionIsPrinted) {
   const std::string out = (test::render_scratch("viewer_version") / "v.txt").string();
   ASSERT_EQ(std::system(("'" + std::string(DYNAMESH_VIEWER) + "' --version > " + out).c_str()), 0);
