@@ -14,7 +14,7 @@ namespace dynamesh {
 // The original implementation's guard against pathological triangles (DESIGN.md, "The 4-8
 // mesh"): a triangle with an angle below min_deg or above max_deg is pathological.
 // weld_first: a weldable vertex with such a triangle in its star is welded before any other,
-// even above T - eps, as long as the weld keeps the error within T + eps (so the split pass has
+// even above T, as long as the weld keeps the error within T + eps (so the split pass has
 // no reason to undo it). refuse_splits: an edge whose diamond holds one is not split
 // (bisecting a sliver makes thinner slivers) -- off by default, because it leaves faces above
 // T + eps (measured 1.36 (T + eps) on capsule-bend; test_smoothing_angle_guard.cpp).
@@ -31,7 +31,7 @@ enum class Sampling { kPredictive, kFull };
 
 struct AdaptOptions {
   double threshold = 0.008;  // T: target geometric error (scene units)
-  double epsilon = 0.002;    // eps: hysteresis half-width; weld below T - eps, split above T + eps
+  double epsilon = 0.002;    // eps: hysteresis; split above T + eps, weld below T (criteria.h)
   double density = 2000.0;   // D: samples per unit area (at least one per triangle)
   std::uint64_t seed = 1;    // sample jitter; runs with the same seed are identical
   std::size_t max_triangles = 2'000'000;  // refinement stops at this budget (reported)

@@ -1,7 +1,7 @@
 // Adapter: keeps a 4-8 mesh adapted to a deforming surface S(t) (de Goes et al. 2006).
 // Each step, in this order (DESIGN.md): normal correction (vertices onto S(t)), tangential
 // correction (Equation 1), sampling (every sample's error), welds of every vertex whose
-// post-weld error is below T - eps (smallest first, cascading), then splits of every edge
+// post-weld error is below T (criteria.h; smallest first, cascading), then splits of every edge
 // whose diamond's error is above T + eps (largest first). The mesh at the end of a step is
 // the one that was measured.
 //
@@ -72,6 +72,7 @@ class Adapter {
   // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
   // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
   // Returns whether the surface had changed (and the vertices were corrected).
+  const StepStats& initialize_here();
   bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
   int plan_substeps(double from, double to);

@@ -209,23 +209,57 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
   fs::remove_all(dir);
 }
 
+// A still frame at an extreme time, initialised there: twist with 3 turns at t = 1. Refined
+// directly from its twisted base mesh it was not embedded (T = 0.002: 1.67M self-intersecting
+// pairs, smallest angle 0.72 degrees; T = 0.004: 851 690 pairs, 1.01 degrees); the adapter now
+// adapts the untwisted bar (Surface::mild_time) and follows the twist to t = 1 before the first
+// frame is published.
+TEST(MotionFrames, TwistInitialisedAtThreeTurns) {
+  std::unique_ptr<Surface> surface = make_scene("twist", {{"turns", 3.0}});
+  surface->set_time(1.0);
+  AdaptOptions options;
+  options.threshold = 0.004;
+  options.epsilon = options.threshold / 4;
+  options.density = 2000.0;
+  MotionRun run{std::move(surface), nullptr, options};
+  run.adapter = std::make_unique<Adapter>(*run.surface, options,
+                                          default_criteria("twist", 0.0, options, 0.0));
+  const StepStats& stats = run.adapter->initialize();
+  EXPECT_EQ(run.surface->time(), 1.0);
+  EXPECT_EQ(stats.step, 0);
+  expect_frame_ok(run, {10.0, true, 4.0 * options.density}, "twist initialised at t = 1");
+}
+
 // --- return to start --------------------------------------------------------------------
 
-// NOT MET YET (issue 13, "No drift over cycles"), so disabled rather than loosened: with 10
-// steps per segment the counts after cycles 1, 2, 3 over the start were, before the motion
-// safeguards and after them: sphere 1.26 1.29 1.36 / 1.27 1.33 1.35; capsule-bend
-// 1.12 1.25 1.24 / about the same; twist 0.80 0.84 0.79 / 0.88 0.90 0.95 (in range, but the
-// third cycle 5.6% off the second); sinc 1.00 throughout. What is left is the hysteresis of
-// the weld pass (test_adapter.cpp, BackAndForthSweepReturnsWithinOneLevel), not folds: run
-// with --gtest_also_run_disabled_tests to see the figures.
-TEST(MotionFrames, DISABLED_AnalyticScenesReturnToStart) {
-  for (const char* scene : {"sphere", "capsule-bend", "sinc", "twist"}) {
-    MotionRun run = start(scene, {}, 0.0);
-    const std::vector<double> r = cycle_returns(run, 3, 10);
-    expect_returns(r, scene);
-    RecordProperty(std::string(scene) + "_returns",
-                   std::to_string(r[0]) + " " + std::to_string(r[1]) + " " + std::to_string(r[2]));
-  }
+// A sweep t: 0 -> 1 -> 0 ends with welds, so it returns to the fresh mesh only if welds stop
+// where the initial refinement stopped: criteria.h. With the paper's weld bound T - eps
+// (and L 2^(-1/4)) the counts after cycles 1, 2, 3 over the start were sphere 1.27 1.33 1.35
+// and capsule-bend 1.12 1.25 1.24 (seen failing); with the weld bound at the initial target
+// 1.04 1.02 1.04 and 1.02 1.17 1.14; sinc 1.00 throughout either way.
+void expect_scene_returns(const char* scene) {
+  MotionRun run = start(scene, {}, 0.0);
+  const std::vector<double> r = cycle_returns(run, 3, 10);
+  expect_returns(r, scene);
+  ::testing::Test::RecordProperty(
+      std::string(scene) + "_returns",
+      std::to_string(r[0]) + " " + std::to_string(r[1]) + " " + std::to_string(r[2]));
+}
+
+TEST(MotionFrames, AnalyticScenesReturnToStart) {
+  for (const char* scene : {"sphere", "capsule-bend", "sinc"}) expect_scene_returns(scene);
+}
+
+// NOT MET (issue 13), so disabled rather than loosened: twist returns 0.85 0.81 0.87 (paper
+// weld bound: 0.88 0.90 0.95), the third cycle 8% off the second. Its loss is in the caps
+// (|x| > 1.3): 880 of the 1664 starting triangles, 515 after one cycle, 441 after two, while
+// the sides go 784 -> 893 -> 899. Not the weld band (below 1 under every band tried), not the
+// angle guard (no pathological welds in a cycle), not the no-gain weld rule (same counts
+// without it), not the start's lack of smoothing (same with smoothing rounds at
+// initialisation): the caps' error stays within T + eps, so the fresh caps are finer than
+// the band needs, a property of where the base mesh puts them (issue-13-part2 note).
+TEST(MotionFrames, DISABLED_TwistReturnsToStart) {
+  expect_scene_returns("twist");
 }
 
 }  // namespace
