@@ -87,6 +87,10 @@ class Adapter {
   void measure(const std::vector<Face>& faces);
   void weld_pass();
   void split_pass(bool initial);
+  // Weld and split passes at the current surface until neither changes the mesh (a few
+  // rounds): the settled state initialize() publishes, a fixed point of step() on a static
+  // surface.
+  void settle();
   // Largest urgency of the applicable criteria if f's error were `error`.
   double split_urgency(Face f, double error, bool initial) const;
   // `error`: the post-weld error; `current`: the star's error now.
