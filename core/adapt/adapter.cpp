@@ -165,6 +165,8 @@ const StepStats& Adapter::initialize_here() {
     stats_.seconds.split = clock.lap();
     settle();
     stats_.seconds.weld = clock.lap();
+    relax();
+    stats_.seconds.smooth = clock.lap();
   }
   watch_topology();
   publish_repaired();
@@ -503,6 +505,19 @@ void Adapter::settle() {
     weld_pass();
     split_pass(false);
     if (stats_.splits + stats_.welds == before) return;
+  }
+}
+
+void Adapter::relax() {
+  if (!options_.geometric || !options_.smoothing.enabled) return;
+  for (int round = 0; round < options_.initial_relaxation_rounds; ++round) {
+    // A round is what a step does to the mesh, without the motion: smoothing (Equation 1),
+    // every face measured where the vertices now are, welds and splits until quiet.
+    start_positions_ = mesh_.positions();
+    tangential_correction();
+    samples_.refresh_patterns(mesh_);
+    measure(mesh_.live_faces());
+    settle();
   }
 }
 

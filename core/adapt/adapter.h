@@ -91,6 +91,8 @@ class Adapter {
   // rounds): the settled state initialize() publishes, a fixed point of step() on a static
   // surface.
   void settle();
+  // The first mesh, relaxed as a motion would (AdaptOptions::initial_relaxation_rounds).
+  void relax();
   // Largest urgency of the applicable criteria if f's error were `error`.
   double split_urgency(Face f, double error, bool initial) const;
   // `error`: the post-weld error; `current`: the star's error now.
