@@ -516,6 +516,9 @@ void Adapter::relax() {
     start_positions_ = mesh_.positions();
     tangential_correction();
     samples_.refresh_patterns(mesh_);
+    // The predictor's references must be taken from the vertices' frames where they now are.
+    if (options_.sampling == Sampling::kPredictive)
+      predictor_.begin_step(mesh_, probe_, start_positions_, step_);
     measure(mesh_.live_faces());
     settle();
   }
