@@ -49,7 +49,9 @@ class Adapter {
   Adapter(const Adapter&) = delete;
   Adapter& operator=(const Adapter&) = delete;
 
-  // Base mesh at the surface's current time, refined until within tolerance (step 0).
+  // Base mesh at the surface's current time, refined until within tolerance, relaxed
+  // (AdaptOptions::initial_relaxation_rounds) and settled: step 0, a fixed point of step()
+  // at the same time.
   const StepStats& initialize();
   // One step to time t.
   const StepStats& step(double t);
