@@ -108,6 +108,37 @@ void Adapter::set_options(const AdaptOptions& options, CriterionList criteria) {
 }
 
 const StepStats& Adapter::initialize() {
+  // A family whose base mesh does not refine well everywhere (Surface::mild_time) is adapted
+  // where it is mild and carried to the requested time by the motion safeguards (sub-steps,
+  // fold repair), which keep every frame embedded; the detour is not a frame.
+  const double t0 = surface_.time(), mild = surface_.mild_time();
+  if (!options_.geometric || std::isnan(mild) || mild == t0) return initialize_here();
+  surface_.set_time(mild);
+  initialize_here();
+  double seconds = stats_.seconds.total;
+  // In kMildSteps steps, so that the detour stays within the sub-step cap
+  // (SubstepOptions::max_substeps): one step of 3 turns hit it and left 6.9-degree angles.
+  constexpr int kMildSteps = 8;
+  for (int k = 1; k <= kMildSteps; ++k)
+    seconds += step(k == kMildSteps ? t0 : mild + (t0 - mild) * k / kMildSteps).seconds.total;
+  // The first frame, as initialize_here() leaves it: step 0, every vertex born with it, and
+  // settled, so that a static surface is a fixed point from here on (the detour's last step
+  // ended, like any step, with splits its weld pass has not seen).
+  step_ = 0;
+  tracker_->current_step = 0;
+  for (Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = 0;
+  stats_ = StepStats{};
+  stats_.time = t0;
+  Stopwatch clock;
+  if (options_.structural) settle();
+  stats_.seconds.weld = clock.lap();
+  publish_repaired();
+  finish_stats();
+  stats_.seconds.total += seconds;
+  return stats_;
+}
+
+const StepStats& Adapter::initialize_here() {
   Stopwatch clock;
   mesh_ = surface_.base_mesh();
   // The tracker places new vertices before the samples are redistributed over them.
@@ -128,14 +159,14 @@ const StepStats& Adapter::initialize() {
   measure(mesh_.live_faces());
   stats_.seconds.sample = clock.lap();
   if (options_.structural) {
-    // Refine to the centre of the band (criteria.h, SplitQuery::initial), then let a weld and
-    // a split pass settle it: the result is a fixed point of step() on a static surface.
+    // Refine to the weld bound (criteria.h, SplitQuery::initial), then settle: the result is
+    // a fixed point of step() on a static surface.
     split_pass(true);
     stats_.seconds.split = clock.lap();
-    weld_pass();
+    settle();
     stats_.seconds.weld = clock.lap();
-    split_pass(false);
-    stats_.seconds.split += clock.lap();
+    relax();
+    stats_.seconds.smooth = clock.lap();
   }
   watch_topology();
   publish_repaired();
@@ -459,6 +490,38 @@ void Adapter::weld_pass() {
   std::sort(merged.begin(), merged.end());
   merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
   measure(merged);
+}
+
+void Adapter::settle() {
+  // A weld pass and a split pass undo each other only through the estimate's noise: a face
+  // split above T + eps is measured afresh on its children's samples (redrawn when a child
+  // holds too few), and the weld that would undo it may then pass the no-gain rule, whose
+  // ceiling is T + eps itself (criteria.h). Such a pair settles in one more round, since the
+  // welded face keeps the samples its weld was judged on; the cap only guards against a
+  // pathological estimate.
+  constexpr int kMaxRounds = 4;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    const std::size_t before = stats_.splits + stats_.welds;
+    weld_pass();
+    split_pass(false);
+    if (stats_.splits + stats_.welds == before) return;
+  }
+}
+
+void Adapter::relax() {
+  if (!options_.geometric || !options_.smoothing.enabled) return;
+  for (int round = 0; round < options_.initial_relaxation_rounds; ++round) {
+    // A round is what a step does to the mesh, without the motion: smoothing (Equation 1),
+    // every face measured where the vertices now are, welds and splits until quiet.
+    start_positions_ = mesh_.positions();
+    tangential_correction();
+    samples_.refresh_patterns(mesh_);
+    // The predictor's references must be taken from the vertices' frames where they now are.
+    if (options_.sampling == Sampling::kPredictive)
+      predictor_.begin_step(mesh_, probe_, start_positions_, step_);
+    measure(mesh_.live_faces());
+    settle();
+  }
 }
 
 void Adapter::split_pass(bool initial) {

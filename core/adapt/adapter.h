@@ -1,7 +1,7 @@
 // Adapter: keeps a 4-8 mesh adapted to a deforming surface S(t) (de Goes et al. 2006).
 // Each step, in this order (DESIGN.md): normal correction (vertices onto S(t)), tangential
 // correction (Equation 1), sampling (every sample's error), welds of every vertex whose
-// post-weld error is below T - eps (smallest first, cascading), then splits of every edge
+// post-weld error is below T (criteria.h; smallest first, cascading), then splits of every edge
 // whose diamond's error is above T + eps (largest first). The mesh at the end of a step is
 // the one that was measured.
 //
@@ -49,7 +49,9 @@ class Adapter {
   Adapter(const Adapter&) = delete;
   Adapter& operator=(const Adapter&) = delete;
 
-  // Base mesh at the surface's current time, refined until within tolerance (step 0).
+  // Base mesh at the surface's current time, refined until within tolerance, relaxed
+  // (AdaptOptions::initial_relaxation_rounds) and settled: step 0, a fixed point of step()
+  // at the same time.
   const StepStats& initialize();
   // One step to time t.
   const StepStats& step(double t);
@@ -72,6 +74,7 @@ class Adapter {
   // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
   // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
   // Returns whether the surface had changed (and the vertices were corrected).
+  const StepStats& initialize_here();
   bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
   int plan_substeps(double from, double to);
@@ -86,6 +89,12 @@ class Adapter {
   void measure(const std::vector<Face>& faces);
   void weld_pass();
   void split_pass(bool initial);
+  // Weld and split passes at the current surface until neither changes the mesh (a few
+  // rounds): the settled state initialize() publishes, a fixed point of step() on a static
+  // surface.
+  void settle();
+  // The first mesh, relaxed as a motion would (AdaptOptions::initial_relaxation_rounds).
+  void relax();
   // Largest urgency of the applicable criteria if f's error were `error`.
   double split_urgency(Face f, double error, bool initial) const;
   // `error`: the post-weld error; `current`: the star's error now.

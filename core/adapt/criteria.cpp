@@ -6,13 +6,13 @@
 namespace dynamesh {
 
 GeometricErrorCriterion::GeometricErrorCriterion(double threshold, double epsilon)
-    : threshold_(threshold), split_above_(threshold + epsilon), weld_below_(threshold - epsilon) {}
+    : threshold_(threshold), split_above_(threshold + epsilon), weld_below_(threshold) {}
 
 double GeometricErrorCriterion::split_urgency(const SplitQuery& q) const {
   return q.error / (q.initial ? threshold_ : split_above_);
 }
 
-// Exactly the bound allows_weld applies: below T - eps always, up to T + eps without gain.
+// Exactly the bound allows_weld applies: below T always, up to T + eps without gain.
 double GeometricErrorCriterion::weld_error_ceiling(double current_error) const {
   return std::max(weld_below_, std::min(split_above_, kNoGain * current_error));
 }
@@ -24,7 +24,7 @@ bool GeometricErrorCriterion::allows_weld(const WeldQuery& q) const {
 EdgeLengthCriterion::EdgeLengthCriterion(double target_length)
     : target_(target_length),
       split_above_(target_length * std::pow(2.0, 0.25)),
-      weld_below_(target_length * std::pow(2.0, -0.25)) {}
+      weld_below_(target_length) {}
 
 double EdgeLengthCriterion::split_urgency(const SplitQuery& q) const {
   const Vec3& a = q.mesh.position(q.mesh.vertex(q.face, 1));

@@ -10,6 +10,7 @@
 // can be evaluated in parallel.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,6 +65,10 @@ class Surface {
   // A coarse 4-8 base mesh with the surface's topology, its vertices on the surface at the
   // current time (parametric: with their (u, v) set).
   virtual Mesh48 base_mesh() const = 0;
+  // A time at which the family is mild: its base mesh refines into an embedded mesh, and
+  // any other time is reached from it by a motion the adapter follows (Adapter::initialize
+  // adapts there and sub-steps to the requested time). NaN (the default): every time is.
+  virtual double mild_time() const { return std::numeric_limits<double>::quiet_NaN(); }
 
   // Scalar quantities the surface carries at its points besides geometry (e.g. the MR
   // intensity of the `mri` scene), by name; the viewer and exporters can colour by them.

@@ -209,23 +209,52 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
   fs::remove_all(dir);
 }
 
+// A still frame at an extreme time, initialised there: twist with 3 turns at t = 1. Refined
+// directly from its twisted base mesh it was not embedded (T = 0.002: 1.67M self-intersecting
+// pairs, smallest angle 0.72 degrees; T = 0.004: 851 690 pairs, 1.01 degrees); the adapter now
+// adapts the untwisted bar (Surface::mild_time) and follows the twist to t = 1 before the first
+// frame is published.
+TEST(MotionFrames, TwistInitialisedAtThreeTurns) {
+  std::unique_ptr<Surface> surface = make_scene("twist", {{"turns", 3.0}});
+  surface->set_time(1.0);
+  AdaptOptions options;
+  options.threshold = 0.004;
+  options.epsilon = options.threshold / 4;
+  options.density = 2000.0;
+  MotionRun run{std::move(surface), nullptr, options};
+  run.adapter = std::make_unique<Adapter>(*run.surface, options,
+                                          default_criteria("twist", 0.0, options, 0.0));
+  const StepStats& stats = run.adapter->initialize();
+  EXPECT_EQ(run.surface->time(), 1.0);
+  EXPECT_EQ(stats.step, 0);
+  expect_frame_ok(run, {10.0, true, 4.0 * options.density}, "twist initialised at t = 1");
+}
+
 // --- return to start --------------------------------------------------------------------
 
-// NOT MET YET (issue 13, "No drift over cycles"), so disabled rather than loosened: with 10
-// steps per segment the counts after cycles 1, 2, 3 over the start were, before the motion
-// safeguards and after them: sphere 1.26 1.29 1.36 / 1.27 1.33 1.35; capsule-bend
-// 1.12 1.25 1.24 / about the same; twist 0.80 0.84 0.79 / 0.88 0.90 0.95 (in range, but the
-// third cycle 5.6% off the second); sinc 1.00 throughout. What is left is the hysteresis of
-// the weld pass (test_adapter.cpp, BackAndForthSweepReturnsWithinOneLevel), not folds: run
-// with --gtest_also_run_disabled_tests to see the figures.
-TEST(MotionFrames, DISABLED_AnalyticScenesReturnToStart) {
-  for (const char* scene : {"sphere", "capsule-bend", "sinc", "twist"}) {
-    MotionRun run = start(scene, {}, 0.0);
-    const std::vector<double> r = cycle_returns(run, 3, 10);
-    expect_returns(r, scene);
-    RecordProperty(std::string(scene) + "_returns",
-                   std::to_string(r[0]) + " " + std::to_string(r[1]) + " " + std::to_string(r[2]));
-  }
+// A sweep t: 0 -> 1 -> 0 returns to the fresh mesh only if the fresh mesh is a state the
+// motion itself leaves behind. Two asymmetries broke that (criteria.h, adapt_options.h):
+// - Welds stopped at the paper's T - eps (and L 2^(-1/4)) while the first refinement stopped
+//   at T (L): a sweep that ends with welds kept regions a level finer. Counts after cycles 1,
+//   2, 3 over the start were sphere 1.27 1.33 1.35 and capsule-bend 1.12 1.25 1.24.
+// - The first mesh was never smoothed, while a motion's smoothing moves vertices onto the
+//   curvature (the twisted bar's rims), where fewer triangles meet the bound: twist came back
+//   0.84 0.82 0.87 (its caps 912 -> 506 triangles), with the weld bound already at T.
+// With the weld bound at the first refinement's target and 20 rounds of relaxation at
+// initialisation (seen failing without either): sphere 1.03 1.03 1.05, capsule-bend 1.03
+// 1.08 1.04, sinc 1.00, twist 1.02 0.99 0.96 (seeds 2 and 3: 1.01 0.97 0.96 and 1.01 0.99
+// 0.99); mri in MriDownAndBackUpThreeTimes.
+void expect_scene_returns(const char* scene) {
+  MotionRun run = start(scene, {}, 0.0);
+  const std::vector<double> r = cycle_returns(run, 3, 10);
+  expect_returns(r, scene);
+  ::testing::Test::RecordProperty(
+      std::string(scene) + "_returns",
+      std::to_string(r[0]) + " " + std::to_string(r[1]) + " " + std::to_string(r[2]));
+}
+
+TEST(MotionFrames, AnalyticScenesReturnToStart) {
+  for (const char* scene : {"sphere", "capsule-bend", "sinc", "twist"}) expect_scene_returns(scene);
 }
 
 }  // namespace
