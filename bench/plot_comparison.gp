@@ -43,7 +43,7 @@ set multiplot layout 1,3 title 'Vertices kept from one frame to the next (mean o
 unset logscale y
 set yrange [-0.05:1.05]
 set ylabel 'share of the previous frame''s vertices'
-set key bottom right
+set key center right
 do for [s in scenes] {
   set title s
   plot csv skip 1 using (pick('dynamesh', s, 8)):(pick('dynamesh', s, 12)) w lp pt 7 lw 2 t 'dynamesh', \
