@@ -22,8 +22,10 @@ struct MriLayersOptions {
   // Otsu's threshold after 1 mm smoothing, and a 5 mm closing: measured on Colin27, the raw
   // mask's isolayers have handles and islands (sulci, open ventricles) at most depths, while
   // after a 5 mm closing every layer from 0 to 20 mm is one solid without holes.
-  SegmentationOptions segmentation{
-      .smoothing_sigma_mm = 1.0, .threshold = 0.0, .closing_radius_mm = 5.0};
+  SegmentationOptions segmentation{.smoothing_sigma_mm = 1.0,
+                                   .threshold = 0.0,
+                                   .opening_radius_mm = 2.0,
+                                   .closing_radius_mm = 5.0};
   // The distance is measured to the 1/2 level of the mask blurred by `boundary_smoothing_mm`
   // (sub-voxel, instead of the voxel staircase), then blurred by `distance_smoothing_mm`
   // before the B-spline. Measured on a NIfTI ball of radius 20 mm with 0.9-1.2 mm voxels

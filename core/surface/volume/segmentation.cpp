@@ -37,6 +37,19 @@ void close_mask(MaskVolume& mask, double radius_mm) {
   }
 }
 
+void open_mask(MaskVolume& mask, double radius_mm) {
+  if (!(radius_mm > 0.0)) return;
+  const float r2 = static_cast<float>(radius_mm * radius_mm);
+  const DistanceTransformResult to_outside = distance_transform(mask, 0);
+  for (std::size_t v = 0; v < mask.values.size(); ++v) {
+    if (mask.values[v] && to_outside.squared[v] <= r2) mask.values[v] = 0;
+  }
+  const DistanceTransformResult to_inside = distance_transform(mask, 1);
+  for (std::size_t v = 0; v < mask.values.size(); ++v) {
+    mask.values[v] = to_inside.squared[v] <= r2 ? 1 : 0;
+  }
+}
+
 Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOptions& options,
                             const ProgressCallback& progress) {
   Segmentation s;
@@ -47,6 +60,7 @@ Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOpt
   s.threshold = s.otsu ? otsu_threshold(smoothed.values) : options.threshold;
   s.mask = threshold_mask(smoothed, s.threshold);
   report(progress, kStage, 0.4);
+  open_mask(s.mask, options.opening_radius_mm);
   s.components = keep_largest_component(s.mask);
   if (s.components == 0) {
     throw std::invalid_argument("segmentation: no voxel above the threshold " +

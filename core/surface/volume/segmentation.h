@@ -15,7 +15,11 @@ namespace dynamesh {
 struct SegmentationOptions {
   double smoothing_sigma_mm = 1.0;  // Gaussian before thresholding; <= 0: none
   double threshold = 0.0;           // intensity; <= 0 means Otsu's threshold
-  double closing_radius_mm = 0.0;   // ball radius of the closing; <= 0: none
+  // Ball radius of an opening before the largest component is kept: it cuts threads thinner
+  // than twice the radius (vessels, nerves, dura left by skull stripping) whose layers are
+  // strings of sub-voxel bubbles that no coarse mesh can follow. <= 0: none.
+  double opening_radius_mm = 0.0;
+  double closing_radius_mm = 0.0;  // ball radius of the closing; <= 0: none
 };
 
 struct Segmentation {
@@ -36,5 +40,7 @@ Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOpt
 // thresholding exact Euclidean distance transforms). Voxels outside the grid count as
 // background for the erosion only as far as the grid reaches.
 void close_mask(MaskVolume& mask, double radius_mm);
+// Morphological opening (erosion then dilation by a ball of `radius_mm`).
+void open_mask(MaskVolume& mask, double radius_mm);
 
 }  // namespace dynamesh
