@@ -187,7 +187,10 @@ Mesh48 make_cuberille_base_mesh(const ImplicitSurface& surface, const Box3& box,
   for (std::size_t q = 0; q < quads.size(); ++q)
     for (std::uint32_t v : quads[q]) incident[v].push_back(static_cast<std::uint32_t>(q));
   const auto nv = static_cast<std::int64_t>(positions.size());
-  std::int64_t failed = -1;
+  ProjectionOptions local;
+  local.max_step = h;  // Newton must not leave the corner's neighbourhood
+  std::vector<Vec3> placed = positions;
+  std::vector<std::uint8_t> unplaced(positions.size(), 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::int64_t iv = 0; iv < nv; ++iv) {
     const auto v = static_cast<std::size_t>(iv);
@@ -198,26 +201,50 @@ Mesh48 make_cuberille_base_mesh(const ImplicitSurface& surface, const Box3& box,
         start += crossing[q];
         ++crossings;
       }
-    start = crossings ? Vec3(start / crossings) : positions[v];
-    const ProjectionResult r = project_to_surface(surface, start);
-    if (r.converged && ((r.point - positions[v]).norm() <= h || crossings == 0)) {
-      positions[v] = r.point;
+    if (crossings == 0) {
+      unplaced[v] = 1;
       continue;
     }
-    if (crossings == 0) {
-#pragma omp critical
-      failed = iv;
+    start /= crossings;
+    const ProjectionResult r = project_to_surface(surface, start, local);
+    if (r.converged && (r.point - positions[v]).norm() <= h) {
+      placed[v] = r.point;
       continue;
     }
     double best = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : incident[v])
       if (valid[q] && (crossing[q] - start).squaredNorm() < best) {
         best = (crossing[q] - start).squaredNorm();
-        positions[v] = crossing[q];
+        placed[v] = crossing[q];
       }
   }
-  if (failed >= 0)
-    throw std::logic_error(surface.name() + ": base mesh vertex did not project onto the surface");
+  // Corners of added cells only: from the mean of their placed quad neighbours.
+  std::vector<std::vector<std::uint32_t>> ring(positions.size());
+  for (const auto& q : quads)
+    for (int e = 0; e < 4; ++e) {
+      ring[q[e]].push_back(q[(e + 1) % 4]);
+      ring[q[(e + 1) % 4]].push_back(q[e]);
+    }
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      if (!unplaced[v]) continue;
+      Vec3 start = Vec3::Zero();
+      int known = 0;
+      for (std::uint32_t w : ring[v])
+        if (!unplaced[w]) {
+          start += placed[w];
+          ++known;
+        }
+      if (!known) continue;
+      start /= known;
+      const ProjectionResult r = project_to_surface(surface, start, local);
+      placed[v] = r.converged && (r.point - start).norm() <= 2.0 * h ? r.point : start;
+      unplaced[v] = 0;
+      progress = true;
+    }
+  }
+  positions.swap(placed);
   for (const auto& q : quads) add_quad(triangles, q[0], q[1], q[2], q[3]);
   if (stats) *stats = s;
   return Mesh48::from_base_triangles(std::move(positions), {}, triangles);

@@ -110,6 +110,7 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   layer_options.volume_path = options.volume_path;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
+  if (const char* e = std::getenv("DYNAMESH_MRI_OPEN")) layer_options.segmentation.opening_radius_mm = std::atof(e);
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
                                       options.depth_max, options.progress);
 }
