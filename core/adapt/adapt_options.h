@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/adapt/motion_substeps.h"
+#include "core/geometry/fold_repair.h"
 #include "core/geometry/tangential_smoothing.h"
 
 namespace dynamesh {
@@ -32,6 +34,11 @@ struct AdaptOptions {
   bool geometric = true;                  // normal and tangential correction
   SmoothingOptions smoothing;
   AngleGuard angle_guard;
+  // Every frame embedded and well shaped, whatever the step size (DESIGN.md, "Quality bars"):
+  // steps that move the surface far against the mesh are cut into sub-steps, and folds and
+  // slivers left by the motion are relaxed away before the frame is published.
+  SubstepOptions substeps;
+  FoldRepairOptions fold_repair;
 };
 
 }  // namespace dynamesh

@@ -130,33 +130,98 @@ const StepStats& Adapter::initialize() {
     split_pass(false);
     stats_.seconds.split += clock.lap();
   }
+  publish_repaired();
   finish_stats();
   return stats_;
 }
 
 const StepStats& Adapter::step(double t) {
-  Stopwatch clock;
-  if (options_.geometric && probe_.follows_material()) record_rest_points();
-  surface_.set_time(t);
+  const double from = surface_.time();
   stats_ = StepStats{};
   stats_.step = ++step_;
   ++tracker_->current_step;
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
   vertices_at_start_ = mesh_.n_vertices();
-  const bool correct = options_.geometric && surface_changed();
-  if (correct) normal_correction();
+  // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
+  // one the paper's whole step, so that no sub-step moves the surface far against the mesh.
+  Stopwatch clock;
+  const int n = plan_substeps(from, t);
   stats_.seconds.project = clock.lap();
-  if (correct) tangential_correction();
-  stats_.seconds.smooth = clock.lap();
-  sampling();
-  stats_.seconds.sample = clock.lap();
-  if (options_.structural) weld_pass();
-  stats_.seconds.weld = clock.lap();
-  if (options_.structural) split_pass(false);
-  stats_.seconds.split = clock.lap();
+  bool corrected = false;
+  for (int k = 1; k <= n; ++k)
+    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && n > 1);
+  // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
+  if (corrected || stats_.splits || stats_.welds) publish_repaired();
   finish_stats();
   return stats_;
+}
+
+int Adapter::plan_substeps(double from, double to) {
+  if (!options_.geometric || !options_.substeps.enabled || from == to) return 1;
+  const bool carry = probe_.follows_material();
+  if (carry) record_rest_points();
+  surface_.set_time(to);
+  predict_displacements(mesh_, probe_, carry ? &rest_points_ : nullptr, displacement_);
+  const MotionEstimate e = estimate_substeps(mesh_, displacement_, options_.substeps);
+  surface_.set_time(from);
+  stats_.substeps = e.substeps;
+  stats_.motion_strain = e.strain;
+  return e.substeps;
+}
+
+bool Adapter::advance(double t, bool rest_points_fresh) {
+  Stopwatch clock;
+  PhaseSeconds& seconds = stats_.seconds;
+  if (options_.geometric && probe_.follows_material() && !rest_points_fresh) record_rest_points();
+  surface_.set_time(t);
+  const bool correct = options_.geometric && surface_changed();
+  if (correct) normal_correction();
+  seconds.project += clock.lap();
+  if (correct) tangential_correction();
+  if (correct) repair(options_.fold_repair);
+  seconds.smooth += clock.lap();
+  sampling();
+  seconds.sample += clock.lap();
+  if (options_.structural) weld_pass();
+  seconds.weld += clock.lap();
+  if (options_.structural) split_pass(false);
+  seconds.split += clock.lap();
+  return correct;
+}
+
+void Adapter::repair(const FoldRepairOptions& options) {
+  const FoldReport r = repair_folds(mesh_, surface_, options);
+  stats_.folds_found += r.folded;
+  stats_.slivers_found += r.slivers;
+  stats_.repair_moves += r.moved;
+  stats_.folds_left = r.remaining_folded;
+  stats_.slivers_left = r.remaining_slivers;
+}
+
+void Adapter::publish_repaired() {
+  // Splits place new vertices on the surface between their parents: over a crease that can
+  // fold or thin a face. A frame is published only after a last look (and, if needed, a
+  // repair, a fresh measurement and the splits it asks for).
+  if (!options_.geometric || !options_.fold_repair.enabled) return;
+  Stopwatch clock;
+  std::vector<Face>& folded = bad_faces_[0];
+  std::vector<Face>& slivers = bad_faces_[1];
+  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+  stats_.folds_left = folded.size();
+  stats_.slivers_left = slivers.size();
+  if (folded.empty() && slivers.empty()) {
+    stats_.seconds.smooth += clock.lap();
+    return;
+  }
+  repair(options_.fold_repair);
+  stats_.seconds.smooth += clock.lap();
+  // The repair moved vertices after they were measured: measure again, and refine where a
+  // move pushed a face above T + eps (a weld pass here could undo what the repair fixed).
+  sampling();
+  stats_.seconds.sample += clock.lap();
+  if (options_.structural) split_pass(false);
+  stats_.seconds.split += clock.lap();
 }
 
 bool Adapter::surface_changed() {
@@ -182,6 +247,10 @@ void Adapter::normal_correction() {
   const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
   // Surfaces with a rest map: each vertex first goes where its material point went (recorded
   // before the time changed), so the projection below only removes rounding and drift.
+  // Without one, the vertex moves with the surface's normal velocity v = -F_t grad F /
+  // |grad F|^2: Newton's first iterate from p at the new time, -F(p) grad F / |grad F|^2 with
+  // F(p) = F_t dt (p was on the surface), is exactly that prediction; on a distance field
+  // (mri) it moves along the distance gradient. Sub-steps keep dt small enough for it to hold.
   const bool carry = probe_.follows_material() && rest_points_.size() >= mesh_.vertex_capacity();
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
@@ -198,8 +267,8 @@ void Adapter::tangential_correction() {
   const SmoothingResult r =
       smooth_tangentially(mesh_, surface_, options_.smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
-  stats_.smoothing_moved = r.moved;
-  stats_.smoothing_reverted = r.reverted;
+  stats_.smoothing_moved += r.moved;
+  stats_.smoothing_reverted += r.reverted;
 }
 
 void Adapter::sampling() {

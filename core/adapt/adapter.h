@@ -64,6 +64,15 @@ class Adapter {
  private:
   class Tracker;
 
+  // One sub-step to time t: the paper's step (correction, repair, sampling, welds, splits).
+  // `rest_points_fresh`: plan_substeps() recorded the rest points at this sub-step's start.
+  // Returns whether the surface had changed (and the vertices were corrected).
+  bool advance(double t, bool rest_points_fresh);
+  // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
+  int plan_substeps(double from, double to);
+  void repair(const FoldRepairOptions& options);
+  // Checks the frame about to be published for folds and slivers; repairs and re-measures.
+  void publish_repaired();
   void normal_correction();
   void tangential_correction();
   void sampling();
@@ -102,6 +111,8 @@ class Adapter {
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
+  std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
+  std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
 };
 
 }  // namespace dynamesh

@@ -29,6 +29,14 @@ struct StepStats {
   // Angle guard (AdaptOptions::angle_guard): splits refused, pathological vertices welded.
   std::size_t splits_refused = 0, pathological_welds = 0;
   std::size_t projection_failures = 0;
+  // Motion (motion_substeps.h): sub-steps taken for this step (1: none), and the largest
+  // predicted edge strain |d_a - d_b| / |a - b| over the whole step.
+  int substeps = 1;
+  double motion_strain = 0.0;
+  // Fold repair (fold_repair.h), summed over the sub-steps: faces found folded or below the
+  // angle floor, vertex moves made, and what is left in the published frame.
+  std::size_t folds_found = 0, slivers_found = 0, repair_moves = 0;
+  std::size_t folds_left = 0, slivers_left = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
   PhaseSeconds seconds;
 };

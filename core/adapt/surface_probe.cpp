@@ -83,6 +83,17 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
   return newton.converged;
 }
 
+Vec3 SurfaceProbe::predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest) const {
+  const Vec3& p = mesh.position(v);
+  if (parametric_) return parametric_->position(mesh.uv(v)) - p;
+  const Vec3 x = rest && follows_material() ? implicit_->from_rest(*rest) : p;
+  Vec3 g;
+  const double f = implicit_->value_gradient(x, g);
+  const double g2 = g.squaredNorm();
+  const Vec3 newton = g2 > 0 ? Vec3(-f / g2 * g) : Vec3::Zero();
+  return x + newton - p;
+}
+
 Vec3 SurfaceProbe::residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b) const {
   const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
   if (parametric_) {

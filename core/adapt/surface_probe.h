@@ -29,6 +29,12 @@ class SurfaceProbe {
   void carry_vertex(Mesh48& mesh, Vertex v, const Vec3& rest) const {
     mesh.position(v) = implicit_->from_rest(rest);
   }
+  // How far v must move to reach the surface at its current time, to first order (the
+  // motion sub-stepping plans with, motion_substeps.h): parametric S(u, v) - p; along the rest
+  // map from `rest` (recorded before the time changed; null: none) and then one Newton step;
+  // otherwise one Newton step -F grad F / |grad F|^2, the normal velocity
+  // v = -F_t grad F / |grad F|^2 integrated over the step (F(p) was 0 before it).
+  Vec3 predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest) const;
   // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
   // periodic seam); call before project_vertex.
   void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "core/surface/projection.h"
+#include "core/geometry/surface_move.h"
 
 namespace dynamesh {
 namespace {
@@ -134,43 +134,6 @@ Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const Vec3& ce
            f.k.dir2.dot(d) * std::exp(-k * f.l2) * f.k.dir2);
 }
 
-// Parametric: the (u, v) step whose image best matches the move; domain-boundary vertices
-// keep their boundary coordinate(s), so corners stay put and sides slide along themselves.
-bool parametric_candidate(const ParametricSurface& s, const Mesh48& mesh, Vertex v,
-                          const Vec3& move, Vec2& uv, Vec3& position) {
-  const ParameterDomain dom = s.domain();
-  const Vec2 size = dom.max - dom.min;
-  const Vec2 old = mesh.uv(v);
-  bool fixed[2];
-  const bool periodic[2] = {dom.periodic_u, dom.periodic_v};
-  for (int a = 0; a < 2; ++a)
-    fixed[a] = !periodic[a] && (std::abs(old[a] - dom.min[a]) < 1e-12 * size[a] ||
-                                std::abs(old[a] - dom.max[a]) < 1e-12 * size[a]);
-  if (fixed[0] && fixed[1]) return false;
-  const ParametricDerivatives dv = s.derivatives(old);
-  Eigen::Matrix<double, 3, 2> J;
-  J << dv.su, dv.sv;
-  Vec2 step = (J.transpose() * J).ldlt().solve(J.transpose() * move);
-  for (int a = 0; a < 2; ++a)
-    if (fixed[a]) step[a] = 0;
-  if (!step.allFinite()) return false;
-  uv = s.wrap_into_domain(old + step);
-  position = s.position(uv);
-  return true;
-}
-
-bool implicit_candidate(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
-                        bool boundary, Vec3& position, std::size_t& failures) {
-  if (boundary) return false;
-  const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
-  if (!r.converged) {
-    ++failures;
-    return false;
-  }
-  position = r.point;
-  return true;
-}
-
 // A face is acceptable when none of its vertices moved, or when it faces the same way as the
 // surface and its smallest angle is not pushed below the limit (or is no worse than it was).
 // `cos_limit`: the cosine of the limit angle.
@@ -241,8 +204,8 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
     if (!mesh.is_alive(v)) continue;
     const Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o);
     const bool ok =
-        par ? parametric_candidate(*par, mesh, v, move, w.uv[k], w.position[k])
-            : implicit_candidate(*imp, mesh, v, move, w.boundary[k], w.position[k], failures);
+        par ? parametric_move(*par, mesh, v, move, w.uv[k], w.position[k])
+            : !w.boundary[k] && implicit_move(*imp, mesh, v, move, w.position[k], failures);
     w.moved[k] = ok ? 1 : 0;
   }
   SmoothingResult r;

@@ -7,7 +7,8 @@ const char* StatsCsvWriter::header() {
          "mean_error,samples,vertices_kept,projection_failures,budget_hit,seconds_project,"
          "seconds_smooth,seconds_sample,seconds_weld,seconds_split,seconds_total,kept_fraction,"
          "survivor_displacement_mean,survivor_displacement_max,smoothing_moved,smoothing_reverted,"
-         "splits_refused,pathological_welds";
+         "splits_refused,pathological_welds,substeps,motion_strain,folds_found,slivers_found,"
+         "repair_moves,folds_left,slivers_left";
 }
 
 StatsCsvWriter::StatsCsvWriter(const std::string& path) : file_(path) {
@@ -24,7 +25,9 @@ void StatsCsvWriter::write(const StepStats& s, std::size_t total_splits, std::si
       << s.seconds.sample << ',' << s.seconds.weld << ',' << s.seconds.split << ','
       << s.seconds.total << ',' << s.kept_fraction << ',' << s.survivor_displacement_mean << ','
       << s.survivor_displacement_max << ',' << s.smoothing_moved << ',' << s.smoothing_reverted
-      << ',' << s.splits_refused << ',' << s.pathological_welds << '\n';
+      << ',' << s.splits_refused << ',' << s.pathological_welds << ',' << s.substeps << ','
+      << s.motion_strain << ',' << s.folds_found << ',' << s.slivers_found << ',' << s.repair_moves
+      << ',' << s.folds_left << ',' << s.slivers_left << '\n';
 }
 
 void StatsCsvWriter::close() {

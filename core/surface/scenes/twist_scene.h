@@ -42,11 +42,16 @@ class TwistScene final : public ImplicitSurface {
   Mat3 hessian(const Vec3& p) const override;
 
   const LpBar& rest_shape() const { return bar_; }
-  // No rest map for the adapter (ImplicitSurface::has_rest_map): a twist shears the bar's
-  // sides, and vertices carried with the material would shear their triangles with them
-  // (measured with smoothing: worst aspect ratio 4.7 -> 17.7, smallest angle 16.6 -> 7.3
-  // deg over a 0 -> 1 run), while the bar sliding under vertices corrected along the normal
-  // costs nothing: its sweeps return to the same mesh without transport.
+  // No rest map for the adapter (ImplicitSurface::has_rest_map), because no transport that
+  // follows this material can be shear-free: the twist's own strain of the bar's sides is a
+  // shear (between cross-sections dx apart the side turns by tau dx, so a patch at radius rho
+  // shears by tau' rho per unit time), and vertices carried with the material shear their
+  // triangles with it (measured with smoothing: worst aspect ratio 4.7 -> 17.7, smallest angle
+  // 16.6 -> 7.3 deg over a 0 -> 1 run). Correction along the normal is the shear-free
+  // transport: each vertex keeps its x and moves within its own cross-section's plane onto the
+  // turned section, the bar sliding under it; its sweeps return to the same mesh. What it
+  // cannot do alone is follow a fast twist in one step (3 turns in 10 steps folded the mesh):
+  // the adapter's sub-steps (core/adapt/motion_substeps.h) bound each step's edge strain.
 
   const TwistMap& twist() const { return twist_; }
 

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <cstdlib>
-
 #include "core/surface/parameter_table.h"
 #include "core/surface/volume/cuberille_base_mesh.h"
 
@@ -13,11 +11,10 @@ namespace dynamesh {
 namespace {
 
 constexpr double kBoundsMargin = 2.0;  // mm
-// mm, cells of the cuberille base (cuberille_base_mesh.h). Env override for measurements.
-double base_cell_size() {
-  if (const char* s = std::getenv("DYNAMESH_MRI_CELL")) return std::atof(s);
-  return 8.0;
-}
+// mm, cells of the cuberille base (cuberille_base_mesh.h). Measured on Colin27 with its
+// header rewritten (see /work/notes/issue-14.md): 8 mm adapts 0.8-1.05, 1.5 mm, 1x1x1.2,
+// oblique; 1.1 and 2 mm still refine without end; 5 mm passed those two but failed others.
+constexpr double kBaseCellSize = 8.0;
 
 }  // namespace
 
@@ -97,7 +94,7 @@ Vec3 MriSurface::first_crossing(const Vec3& origin, const Vec3& direction) const
 
 Mesh48 MriSurface::base_mesh() const {
   CuberilleOptions options;
-  options.cell_size = base_cell_size();
+  options.cell_size = kBaseCellSize;
   return make_cuberille_base_mesh(*this, bounds(), options);
 }
 
@@ -110,7 +107,6 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   layer_options.volume_path = options.volume_path;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
-  if (const char* e = std::getenv("DYNAMESH_MRI_OPEN")) layer_options.segmentation.opening_radius_mm = std::atof(e);
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
                                       options.depth_max, options.progress);
 }

@@ -1,0 +1,54 @@
+#include "core/adapt/motion_substeps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace dynamesh {
+
+void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
+                           const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement) {
+  const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
+  displacement.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vertex v(static_cast<std::uint32_t>(i));
+    const auto k = static_cast<std::size_t>(i);
+    if (mesh.is_alive(v))
+      displacement[k] = probe.predicted_motion(mesh, v, rest_points ? &(*rest_points)[k] : nullptr);
+  }
+}
+
+MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& displacement,
+                                 const SubstepOptions& options) {
+  MotionEstimate e;
+  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  double strain = 0.0;
+  // Every interior edge is seen from both faces: the bound is a maximum, so that is harmless
+  // and cheaper than deduplicating.
+#pragma omp parallel for schedule(static) reduction(max : strain) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(f)) continue;
+    const auto v = mesh.vertices(f);
+    for (int j = 0; j < 3; ++j) {
+      const Vertex a = v[static_cast<std::size_t>(j)], b = v[static_cast<std::size_t>((j + 1) % 3)];
+      const double length = (mesh.position(a) - mesh.position(b)).norm();
+      if (!(length > 0)) continue;
+      const Vec3& da = displacement[a.idx];
+      const Vec3& db = displacement[b.idx];
+      strain = std::max(strain, (da - db).norm() / length);
+    }
+  }
+  e.strain = strain;
+  if (!options.enabled) return e;
+  const double need = strain / options.max_strain;
+  if (std::isfinite(need) && need > 1.0)
+    e.substeps = std::min(options.max_substeps, static_cast<int>(std::ceil(need)));
+  else if (!std::isfinite(need))
+    e.substeps = options.max_substeps;
+  return e;
+}
+
+}  // namespace dynamesh

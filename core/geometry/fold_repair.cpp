@@ -1,0 +1,187 @@
+#include "core/geometry/fold_repair.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/geometry/surface_move.h"
+#include "core/parallel.h"
+
+namespace dynamesh {
+namespace {
+
+Vec3 face_normal(const Mesh48& mesh, Face f) {
+  const auto v = mesh.vertices(f);
+  const Vec3& a = mesh.position(v[0]);
+  return (mesh.position(v[1]) - a).cross(mesh.position(v[2]) - a);
+}
+
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 p[3] = {a, b, c};
+  double smallest = 180.0;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 u = p[(i + 1) % 3] - p[i], w = p[(i + 2) % 3] - p[i];
+    smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / M_PI);
+  }
+  return smallest;
+}
+
+// Whether the triangle's smallest angle (the one opposite its shortest edge) is below the
+// angle whose cosine is `cos_limit`, without trigonometry: this runs on every face every step.
+bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  Vec3 u, v;
+  if (lab <= lbc && lab <= lca) {
+    u = a - c, v = b - c;
+  } else if (lbc <= lca) {
+    u = b - a, v = c - a;
+  } else {
+    u = a - b, v = c - b;
+  }
+  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
+  return !(norms > 0) || u.dot(v) > cos_limit * norms;
+}
+
+// Folded against the surface: the face's normal points away from the surface normal at one
+// of its corners.
+bool folded_against_surface(const Mesh48& mesh, const Surface& surface, Face f) {
+  const Vec3 n = face_normal(mesh, f);
+  if (!(n.squaredNorm() > 0)) return true;  // degenerate: no orientation at all
+  for (Vertex v : mesh.vertices(f))
+    if (n.dot(surface_normal_at(surface, mesh, v)) <= 0) return true;
+  return false;
+}
+
+// Quality of a face for the repair: its smallest angle in degrees when it is not folded,
+// below -1 when it is (so that unfolding always counts as an improvement).
+double face_score(const Mesh48& mesh, const Surface& surface, Face f) {
+  if (folded_against_surface(mesh, surface, f)) return -1.0;
+  const auto v = mesh.vertices(f);
+  return smallest_angle_deg(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
+}
+
+double star_score(const Mesh48& mesh, const Surface& surface, Vertex v) {
+  double worst = 180.0;
+  mesh.for_each_corner_around(
+      v, [&](Corner c) { worst = std::min(worst, face_score(mesh, surface, c.face)); });
+  return worst;
+}
+
+// Moves v towards its one-ring's centroid (uniform weights: the repair wants well-shaped
+// triangles, not the grading the smoothing keeps) in its tangent plane, onto the surface; keeps
+// the move (full or half) only if the worst face of its star improves.
+bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& failures) {
+  if (mesh.is_boundary(v) && surface.kind() == SurfaceKind::kImplicit) return false;
+  Vec3 centroid = Vec3::Zero();
+  int count = 0;
+  mesh.for_each_corner_around(v, [&](Corner c) {
+    const auto w = mesh.vertices(c.face);
+    centroid += mesh.position(w[static_cast<std::size_t>((c.local + 1) % 3)]) +
+                mesh.position(w[static_cast<std::size_t>((c.local + 2) % 3)]);
+    count += 2;
+  });
+  if (count == 0) return false;
+  centroid /= count;
+  const Vec3 n = surface_normal_at(surface, mesh, v);
+  const Vec3 d = centroid - mesh.position(v);
+  const Vec3 move = d - d.dot(n) * n;
+  const double before = star_score(mesh, surface, v);
+  const Vec3 old_position = mesh.position(v);
+  const Vec2 old_uv = mesh.uv(v);
+  const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
+  const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
+  for (double scale : {1.0, 0.5, 0.25}) {
+    Vec3 position = old_position;
+    Vec2 uv = old_uv;
+    const bool ok = par ? parametric_move(*par, mesh, v, scale * move, uv, position)
+                        : implicit_move(*imp, mesh, v, scale * move, position, failures);
+    if (!ok) continue;
+    mesh.position(v) = position;
+    mesh.uv(v) = uv;
+    if (star_score(mesh, surface, v) > before) return true;
+    mesh.position(v) = old_position;
+    mesh.uv(v) = old_uv;
+  }
+  return false;
+}
+
+}  // namespace
+
+void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
+                    std::vector<Face>& folded, std::vector<Face>& slivers) {
+  folded.clear();
+  slivers.clear();
+  // Mesh-only screen: a face turned against its corners' area-weighted mesh normals (more
+  // than 60 degrees; a smooth adapted mesh bends far less between neighbours), or below the
+  // angle floor. Only those evaluate the surface.
+  const std::size_t nv = mesh.vertex_capacity();
+  std::vector<Vec3> vertex_normal(nv, Vec3::Zero());
+  for (Face f : mesh.live_faces()) {
+    const Vec3 n = face_normal(mesh, f);
+    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += n;
+  }
+  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
+  const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  std::vector<std::uint8_t> kind(static_cast<std::size_t>(n), 0);  // 1 folded, 2 sliver
+#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(f)) continue;
+    const Vec3 fn = face_normal(mesh, f);
+    const auto v = mesh.vertices(f);
+    bool suspect = !(fn.squaredNorm() > 0);
+    for (Vertex w : v) {
+      const Vec3& m = vertex_normal[w.idx];
+      suspect = suspect || fn.dot(m) <= 0.5 * fn.norm() * m.norm();
+    }
+    auto& k = kind[static_cast<std::size_t>(i)];
+    if (suspect && folded_against_surface(mesh, surface, f))
+      k = 1;
+    else if (below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit))
+      k = 2;
+  }
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto k = kind[static_cast<std::size_t>(i)];
+    if (k == 1) folded.push_back(Face(static_cast<std::uint32_t>(i)));
+    if (k == 2) slivers.push_back(Face(static_cast<std::uint32_t>(i)));
+  }
+}
+
+FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options) {
+  FoldReport report;
+  if (!options.enabled) return report;
+  std::vector<Face> folded, slivers;
+  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers);
+  report.folded = folded.size();
+  report.slivers = slivers.size();
+  if (folded.empty() && slivers.empty()) return report;  // the usual case: one pass, no repair
+  std::vector<Vertex> active, next;
+  std::vector<std::uint32_t> seen(mesh.vertex_capacity(), 0);
+  for (const auto* list : {&folded, &slivers})
+    for (Face f : *list)
+      for (Vertex v : mesh.vertices(f)) active.push_back(v);
+  std::size_t failures = 0;
+  for (std::uint32_t round = 1;
+       round <= static_cast<std::uint32_t>(options.max_rounds) && !active.empty(); ++round) {
+    next.clear();
+    for (Vertex v : active) {
+      if (seen[v.idx] == round) continue;
+      seen[v.idx] = round;
+      if (relax_vertex(mesh, surface, v, failures)) ++report.moved;
+      if (star_score(mesh, surface, v) >= options.min_angle_deg) continue;
+      // Still bad: its neighbours relax next round, to make room.
+      next.push_back(v);
+      mesh.for_each_corner_around(v, [&](Corner c) {
+        for (Vertex w : mesh.vertices(c.face))
+          if (w != v) next.push_back(w);
+      });
+    }
+    active.swap(next);
+  }
+  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers);
+  report.remaining_folded = folded.size();
+  report.remaining_slivers = slivers.size();
+  return report;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,43 @@
+// Fold detection and local repair: no published frame may hold a fold (DESIGN.md, "Quality
+// bars": every frame an embedded manifold with a floor on its smallest angle).
+//
+// A face is *folded* when its normal points against the surface normal at one of its corners
+// (implicit: grad F; parametric: Su x Sv). One test covers the three ways motion breaks a mesh:
+// a triangle turned over, a triangle stretched over a crease (its corners sit on sheets whose
+// normals disagree), and a tangled one-ring (some face of the ring turned over). A face is a
+// *sliver* when its smallest angle is below the floor.
+//
+// Finding them costs one pass over the faces with the mesh alone (face normals against their
+// vertices' area-weighted mesh normals, smallest angles); only the few candidates evaluate the
+// surface. Repair is local relaxation: each vertex of a bad face moves towards its one-ring's
+// centroid in its tangent plane and back onto the surface, kept only if the worst face of its
+// star gets better; rings that stay bad widen to their neighbours, round after round.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/mesh/mesh48.h"
+#include "core/surface/surface.h"
+
+namespace dynamesh {
+
+struct FoldRepairOptions {
+  bool enabled = true;
+  double min_angle_deg = 10.0;  // faces with a smaller angle are relaxed too
+  int max_rounds = 12;
+};
+
+struct FoldReport {
+  std::size_t folded = 0, slivers = 0;  // found
+  std::size_t moved = 0;                // vertex moves kept
+  std::size_t remaining_folded = 0, remaining_slivers = 0;
+};
+
+// Faces that are folded (`folded`) or slivers (`slivers`), checked as described above.
+void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
+                    std::vector<Face>& folded, std::vector<Face>& slivers);
+
+FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options);
+
+}  // namespace dynamesh

@@ -1,0 +1,51 @@
+#include "core/geometry/surface_move.h"
+
+#include <cmath>
+
+#include "core/surface/projection.h"
+
+namespace dynamesh {
+
+bool parametric_move(const ParametricSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
+                     Vec2& uv, Vec3& position) {
+  const ParameterDomain dom = s.domain();
+  const Vec2 size = dom.max - dom.min;
+  const Vec2 old = mesh.uv(v);
+  bool fixed[2];
+  const bool periodic[2] = {dom.periodic_u, dom.periodic_v};
+  for (int a = 0; a < 2; ++a)
+    fixed[a] = !periodic[a] && (std::abs(old[a] - dom.min[a]) < 1e-12 * size[a] ||
+                                std::abs(old[a] - dom.max[a]) < 1e-12 * size[a]);
+  if (fixed[0] && fixed[1]) return false;
+  const ParametricDerivatives dv = s.derivatives(old);
+  Eigen::Matrix<double, 3, 2> J;
+  J << dv.su, dv.sv;
+  Vec2 step = (J.transpose() * J).ldlt().solve(J.transpose() * move);
+  for (int a = 0; a < 2; ++a)
+    if (fixed[a]) step[a] = 0;
+  if (!step.allFinite()) return false;
+  uv = s.wrap_into_domain(old + step);
+  position = s.position(uv);
+  return true;
+}
+
+bool implicit_move(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
+                   Vec3& position, std::size_t& failures) {
+  const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
+  if (!r.converged) {
+    ++failures;
+    return false;
+  }
+  position = r.point;
+  return true;
+}
+
+Vec3 surface_normal_at(const Surface& s, const Mesh48& mesh, Vertex v) {
+  if (const auto* par = dynamic_cast<const ParametricSurface*>(&s)) return par->normal(mesh.uv(v));
+  Vec3 g;
+  static_cast<const ImplicitSurface&>(s).value_gradient(mesh.position(v), g);
+  const double n = g.norm();
+  return n > 0 ? Vec3(g / n) : Vec3::UnitZ();
+}
+
+}  // namespace dynamesh
