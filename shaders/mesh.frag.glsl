@@ -1,14 +1,19 @@
 #version 330 core
 // Mesh fragment stage: base colour (flat tint or a colour map of the scalar), two-light
-// shading, a different tint on back faces, and the wireframe overlay.
+// shading lit from whichever side faces the eye, a different tint on the back faces of the
+// flat-tinted surface (a colour map shows its bar's colours from both sides: an open
+// surface is seen from either), and the wireframe overlay.
 in FragmentData {
   vec3 view_position;
   vec3 view_normal;
   float scalar;
   noperspective vec3 edge_distance;
+  flat vec3 corner_scalars;
+  vec3 barycentric;
 } f_in;
 
 uniform bool u_use_colormap;
+uniform bool u_categorical;    // the scalar is a category: each corner's region is flat
 uniform sampler2D u_colormap;  // 256 x 1, the map from 0 to 1
 uniform vec2 u_scalar_range;   // scalar values mapped to the map's two ends
 uniform vec3 u_surface_color;
@@ -21,9 +26,17 @@ uniform float u_ambient;
 
 out vec4 frag_color;
 
+// The scalar here: interpolated, or for a category the value of the nearest corner.
+float scalar_value() {
+  if (!u_categorical) return f_in.scalar;
+  vec3 b = f_in.barycentric;
+  if (b.x >= b.y && b.x >= b.z) return f_in.corner_scalars.x;
+  return b.y >= b.z ? f_in.corner_scalars.y : f_in.corner_scalars.z;
+}
+
 vec3 base_color() {
   if (!u_use_colormap) return u_surface_color;
-  float t = (f_in.scalar - u_scalar_range.x) / max(u_scalar_range.y - u_scalar_range.x, 1e-30);
+  float t = (scalar_value() - u_scalar_range.x) / max(u_scalar_range.y - u_scalar_range.x, 1e-30);
   return texture(u_colormap, vec2(clamp(t, 0.0, 1.0), 0.5)).rgb;
 }
 
@@ -40,7 +53,7 @@ void main() {
   vec3 color = base_color();
   if (!gl_FrontFacing) {
     n = -n;
-    color = mix(color, u_backface_tint, 0.65);
+    if (!u_use_colormap) color = mix(color, u_backface_tint, 0.65);
   }
   // Headlight from the eye, plus a dimmer fixed light so that shapes read in depth.
   float s1, s2;

@@ -18,6 +18,10 @@ out FragmentData {
   vec3 view_normal;
   float scalar;
   noperspective vec3 edge_distance;
+  // Categorical fields (valence, level): the three corners' values and where in the
+  // triangle the fragment is, so it takes its nearest corner's value unblended.
+  flat vec3 corner_scalars;
+  vec3 barycentric;
 } g_out;
 
 vec2 to_pixels(vec4 clip) { return 0.5 * u_viewport_size * clip.xy / clip.w; }
@@ -40,6 +44,9 @@ void main() {
     g_out.scalar = v_in[i].scalar;
     g_out.edge_distance = vec3(0.0);
     g_out.edge_distance[i] = heights[i];
+    g_out.corner_scalars = vec3(v_in[0].scalar, v_in[1].scalar, v_in[2].scalar);
+    g_out.barycentric = vec3(0.0);
+    g_out.barycentric[i] = 1.0;
     gl_Position = gl_in[i].gl_Position;
     EmitVertex();
   }

@@ -1,16 +1,45 @@
 // dynamesh-cli: the batch command line. Bad input: one line on stderr, exit status 2.
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "app/cli/run_command.h"
 #include "app/cli/run_options.h"
+#include "core/io/atomic_file.h"
 #include "core/surface/scene_registry.h"
+
+namespace {
+
+// One line, whatever the message quotes from the command line (a scene name or file name
+// with a newline in it): control characters are shown escaped.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\r')
+      out += "\\r";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += '?';
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace dynamesh;
   const std::vector<std::string> args(argv + 1, argv + argc);
+  // Ctrl-C or SIGTERM: no *.partial file stays; frames already complete do (README).
+  remove_partial_files_on_signal();
   try {
+    if (!args.empty() && args[0] == "--version") {
+      std::cout << "dynamesh-cli " << DYNAMESH_VERSION << "\n";
+      return 0;
+    }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
       std::cout << main_help();
       return args.empty() ? 2 : 0;
@@ -29,10 +58,14 @@ int main(int argc, char** argv) {
       }
     return run_command(parse_run_options(rest), std::cout, std::cerr);
   } catch (const UsageError& e) {
-    std::cerr << "dynamesh-cli: " << e.what() << "\n";
+    std::cerr << "dynamesh-cli: " << one_line(e.what()) << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "dynamesh-cli: out of memory: lower --max-triangles, --max-samples or "
+                 "--density (the budgets' estimate is checked against --max-memory)\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "dynamesh-cli: error: " << e.what() << "\n";
+    std::cerr << "dynamesh-cli: error: " << one_line(e.what()) << "\n";
     return 1;
   }
 }

@@ -1,23 +1,36 @@
 #include "app/cli/run_command.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "app/cli/run_summary.h"
 #include "app/offscreen/offscreen_render.h"
 #include "app/render/color_mode.h"
+#include "app/render/color_scale.h"
 #include "core/adapt/adapter.h"
+#include "core/adapt/workload_estimate.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
 #include "core/io/stats_csv.h"
+#include "core/io/vtk_export.h"
 
 namespace dynamesh {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string format_number(double x) {
+  std::ostringstream out;
+  out.precision(3);
+  out << x;
+  return out.str();
+}
 
 // Long loads (the mri volume: reading, segmenting, distance transform) report progress.
 ProgressCallback progress_printer(const RunOptions& o, std::ostream& log) {
@@ -67,6 +80,64 @@ void check_outputs(const RunOptions& o) {
   }
 }
 
+// Memory the budgets allow, estimated before anything is allocated: per triangle the mesh,
+// its adaptation bookkeeping and a snapshot (measured: about kBytesPerTriangle at 2M
+// triangles on capsule-bend), per sample 12 bytes twice (the pool may hold as much garbage
+// as live samples before it is compacted). A face holds at most 256 samples.
+void check_memory_budget(const RunOptions& o) {
+  constexpr double kBytesPerTriangle = 600.0, kBytesPerSample = 24.0, kMiB = 1024.0 * 1024.0;
+  const double triangles = static_cast<double>(o.adapt.max_triangles);
+  const double samples = std::min(static_cast<double>(o.adapt.max_samples), 256.0 * triangles);
+  const double mb = (triangles * kBytesPerTriangle + samples * kBytesPerSample) / kMiB;
+  if (mb > o.max_memory_mb) {
+    std::ostringstream msg;
+    msg << "the budgets (--max-triangles " << o.adapt.max_triangles << ", --max-samples "
+        << o.adapt.max_samples << ") could need about " << std::lround(mb)
+        << " MiB, more than --max-memory " << o.max_memory_mb
+        << "; lower them or raise --max-memory";
+    throw UsageError(msg.str());
+  }
+}
+
+std::string short_number(double x) {
+  std::ostringstream s;
+  s.precision(2);
+  s << x;
+  return s.str();
+}
+
+// Feasibility before any work (workload_estimate.h): at t0 and, for a run with steps, at
+// four more times up to t1, the surface must be finite, continuous and within the triangle
+// and sample budgets at the requested T.
+void check_workload(const RunOptions& o, Surface& surface) {
+  const auto [first, last] = std::minmax_element(o.keyframes.begin(), o.keyframes.end());
+  const int checks = *first < *last ? 5 : 1;
+  for (int c = 0; c < checks; ++c) {
+    const double t = checks == 1 ? *first : *first + (*last - *first) * c / (checks - 1);
+    surface.set_time(t);
+    const WorkloadEstimate w = estimate_workload(surface, o.adapt.threshold, o.adapt.density,
+                                                 static_cast<double>(o.adapt.max_triangles));
+    const std::string at = "scene " + o.scene + " at t = " + short_number(t) + ": ";
+    if (!w.problem.empty()) throw UsageError(at + w.problem);
+    // A typed formula is refused as soon as it needs more than the budget; a built-in scene
+    // (whose parameters have documented ranges) only when the budget is hopeless, else it
+    // runs and reports the budget hit (--max-triangles as a cap on purpose).
+    const double hopeless = o.scene == "expr" ? 1.0 : 10.0;
+    if (w.triangles > hopeless * static_cast<double>(o.adapt.max_triangles))
+      throw UsageError(at + "the surface needs at least about " + short_number(w.triangles) +
+                       " triangles at --threshold " + short_number(o.adapt.threshold) +
+                       " (curvature integral " + short_number(w.curvature) + " over area " +
+                       short_number(w.area) + "), more than --max-triangles " +
+                       std::to_string(o.adapt.max_triangles) + "; raise --threshold or the budget");
+    if (w.samples > static_cast<double>(o.adapt.max_samples))
+      throw UsageError(at + "the surface needs about " + short_number(w.samples) +
+                       " samples (--density " + short_number(o.adapt.density) + " over area " +
+                       short_number(w.area) + "), more than --max-samples " +
+                       std::to_string(o.adapt.max_samples) +
+                       "; lower --density or raise the budget");
+  }
+}
+
 CriterionList criteria_for(const RunOptions& o, const Surface& surface) {
   double scene_edge_length = 0.0;
   for (const SurfaceParameter& p : surface.parameters())
@@ -79,7 +150,21 @@ void log_step(std::ostream& log, const StepStats& s, int steps) {
       << std::setprecision(3) << s.time << "  triangles=" << s.triangles << "  +" << s.splits
       << " -" << s.welds << "  max_err=" << std::scientific << std::setprecision(2) << s.max_error
       << "  " << std::fixed << std::setprecision(1) << 1e3 * s.seconds.total << " ms"
-      << (s.budget_hit ? "  (triangle budget hit)" : "") << "\n";
+      << (s.budget_hit ? "  (triangle budget hit)" : "")
+      << (s.sample_budget_hit ? "  (sample budget hit)" : "")
+      << (s.time_budget_hit ? "  (time budget hit)" : "") << "\n";
+  log.unsetf(std::ios::floatfield);
+}
+
+// Topology events (issue 16) on stderr whatever --quiet says: they change what the run means.
+void log_topology(std::ostream& log, const StepStats& s) {
+  for (const TopologyEvent& e : s.topology_events)
+    log << "topology: " << to_string(e.kind) << " at t=" << std::fixed << std::setprecision(4)
+        << e.time << " near (" << std::setprecision(3) << e.position.x() << ", " << e.position.y()
+        << ", " << e.position.z() << ")\n";
+  if (s.rebuilt)
+    log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
+        << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";
   log.unsetf(std::ios::floatfield);
 }
 
@@ -98,24 +183,19 @@ SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
   return f;
 }
 
-// Offscreen frames (--render): one renderer for the whole run, so that only what changed
-// goes to the GPU and the camera fitted to the first frame stays put while the mesh moves.
-class FrameRenderer {
+// Every file the run has written so far, so that a run that fails part way (a formula that
+// turns bad at a later time) leaves none of its output behind: bad input, no output file.
+class RunOutputs {
  public:
-  FrameRenderer(const RunOptions& o, double threshold) : dir_(o.render_dir) {
-    options_.width = o.width;
-    options_.height = o.height;
-    options_.style.mode = *parse_color_mode(o.color);
-    options_.style.colors.threshold = static_cast<float>(threshold);
+  void add(std::string path) { paths_.push_back(std::move(path)); }
+  void remove_all() {
+    std::error_code ignored;
+    for (const std::string& p : paths_) fs::remove(p, ignored);
+    paths_.clear();
   }
-  void render(const MeshSnapshot& snap, std::uint64_t step);
-  int frames() const { return frames_; }
 
  private:
-  std::string dir_;
-  OffscreenOptions options_;
-  std::unique_ptr<OffscreenRenderer> renderer_;
-  int frames_ = 0;
+  std::vector<std::string> paths_;
 };
 
 std::string frame_name(const std::string& dir, std::uint64_t step, const char* ext) {
@@ -124,10 +204,148 @@ std::string frame_name(const std::string& dir, std::uint64_t step, const char* e
   return (fs::path(dir) / name).string();
 }
 
-void FrameRenderer::render(const MeshSnapshot& snap, std::uint64_t step) {
-  if (!renderer_) renderer_ = std::make_unique<OffscreenRenderer>();
-  renderer_->render_to_png(snap, options_, frame_name(dir_, step, "png"));
-  ++frames_;
+// Offscreen frames (--render): one renderer for the whole run, so that only what changed
+// goes to the GPU and the camera fitted to the first frame stays put while the mesh moves.
+// With --color-range run the frames wait until the run is over: their colour scale spans
+// every frame's values, which only the last step knows (they are kept in memory meanwhile).
+class FrameRenderer {
+ public:
+  FrameRenderer(const RunOptions& o, double threshold, RunOutputs& outputs)
+      : dir_(o.render_dir), outputs_(outputs) {
+    options_.width = o.width;
+    options_.height = o.height;
+    options_.style.mode = *parse_color_mode(o.color);
+    options_.style.colors = o.colors;
+    options_.style.colors.threshold = threshold;
+    options_.style.wireframe = o.wireframe;
+    options_.view = o.camera;
+    deferred_ = o.colors.range == ColorRange::kRun;
+  }
+  void render(const MeshSnapshot& snap, std::uint64_t step) {
+    if (deferred_) {
+      pending_.push_back(snap);
+      return;
+    }
+    draw(snap, step);
+  }
+  // Draws the frames that waited for the whole run.
+  void finish() {
+    FieldStats whole_run;
+    const std::string field(color_mode_field(options_.style.mode));
+    for (const MeshSnapshot& snap : pending_)
+      if (const ScalarField* f = field.empty() ? nullptr : snap.field(field))
+        whole_run = merge(whole_run, field_stats(f->values));
+    for (const MeshSnapshot& snap : pending_) {
+      if (!renderer_) renderer_ = std::make_unique<OffscreenRenderer>();
+      if (&snap == &pending_.front()) renderer_->restart_color_range(whole_run);
+      draw(snap, snap.step);
+    }
+    pending_.clear();
+  }
+  int frames() const { return frames_; }
+
+ private:
+  void draw(const MeshSnapshot& snap, std::uint64_t step) {
+    if (!renderer_) renderer_ = std::make_unique<OffscreenRenderer>();
+    const std::string path = frame_name(dir_, step, "png");
+    renderer_->render_to_png(snap, options_, path);
+    outputs_.add(path);
+    ++frames_;
+  }
+
+  std::string dir_;
+  RunOutputs& outputs_;
+  OffscreenOptions options_;
+  std::unique_ptr<OffscreenRenderer> renderer_;
+  bool deferred_ = false;
+  std::vector<MeshSnapshot> pending_;
+  int frames_ = 0;
+};
+
+// --export DIR: a PLY and a VTK PolyData file per exported step, and the ParaView collection
+// naming the latter with their times.
+class FrameExporter {
+ public:
+  FrameExporter(std::string dir, RunOutputs& outputs) : dir_(std::move(dir)), outputs_(outputs) {}
+  void write(const MeshSnapshot& snap) {
+    const std::string ply = frame_name(dir_, snap.step, "ply");
+    write_ply(ply, snap);
+    outputs_.add(ply);
+    const std::string vtp = frame_name(dir_, snap.step, "vtp");
+    write_vtp(vtp, snap);
+    outputs_.add(vtp);
+    collection_.emplace_back(snap.time, fs::path(vtp).filename().string());
+  }
+  void finish() {
+    const std::string pvd = (fs::path(dir_) / "frames.pvd").string();
+    write_pvd(pvd, collection_);
+    outputs_.add(pvd);
+  }
+
+ private:
+  std::string dir_;
+  RunOutputs& outputs_;
+  std::vector<std::pair<double, std::string>> collection_;
+};
+
+// The animation's times: --steps per keyframe segment, in order (t0, t1 is one segment).
+std::vector<double> step_times(const RunOptions& o) {
+  std::vector<double> times;
+  for (std::size_t k = 0; k + 1 < o.keyframes.size(); ++k)
+    for (int i = 1; i <= o.steps; ++i)
+      times.push_back(o.keyframes[k] + (o.keyframes[k + 1] - o.keyframes[k]) * i / o.steps);
+  return times;
+}
+
+// --no-geometric is an ablation: without the normal and tangential correction the vertices
+// stay where they were while the surface moves, and splits alone only add triangles (each
+// new vertex lies on the surface, its old neighbours do not): sinc reaches a 2M-triangle
+// budget by its third step and then runs for minutes. Such a run stops at the first step
+// the mesh is left behind, with the reason, instead.
+void fail_if_left_behind(const RunOptions& o, const StepStats& s) {
+  const double bound = o.adapt.threshold + o.adapt.epsilon;
+  if (o.adapt.geometric || !(s.max_error > bound)) return;
+  throw UsageError("--no-geometric: at step " + std::to_string(s.step) + " the mesh is " +
+                   format_number(s.max_error) +
+                   " from the surface, beyond T + eps = " + format_number(bound) +
+                   ": without vertex correction splits cannot follow a moving surface (use "
+                   "--no-geometric on a static interval, e.g. --steps 0 or --t1 equal to --t0)");
+}
+
+// Adapts over the whole animation, writing what was asked for along the way.
+void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fields,
+               StatsCsvWriter* csv, FrameExporter* exporter, FrameRenderer* frames,
+               RunSummary& summary, std::vector<double>& step_seconds, std::ostream& log) {
+  const int total_steps = static_cast<int>(step_times(o).size());
+  auto record = [&](const StepStats& s) {
+    summary.add(s);
+    log_topology(log, s);
+    if (csv) csv->write(s, summary.total_splits, summary.total_welds);
+    if (!o.quiet) log_step(log, s, total_steps);
+    if (o.check) {
+      const CheckReport report = adapter.mesh().check();
+      if (!report.ok()) throw std::logic_error("mesh invariants broken: " + report.summary(5));
+    }
+    if (s.step % static_cast<std::uint64_t>(o.export_every) != 0) return;
+    if (exporter || frames) {
+      const MeshSnapshot snap = adapter.snapshot(fields);
+      if (exporter) exporter->write(snap);
+      if (frames) frames->render(snap, s.step);
+    }
+  };
+  record(adapter.initialize());
+  summary.keyframe_triangles.push_back(adapter.stats().triangles);
+  const std::vector<double> times = step_times(o);
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (std::chrono::steady_clock::now() > o.adapt.deadline) summary.time_budget_hit = true;
+    if (summary.time_budget_hit) break;  // --max-seconds: the run ends with what it has
+    const StepStats& s = adapter.step(times[i]);
+    step_seconds.push_back(s.seconds.total);
+    record(s);
+    fail_if_left_behind(o, s);
+    if ((i + 1) % static_cast<std::size_t>(o.steps) == 0)
+      summary.keyframe_triangles.push_back(s.triangles);
+  }
 }
 
 }  // namespace
@@ -136,6 +354,8 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
   RunOptions o = options;
   if (o.t0 < 0 || o.t0 > 1 || o.t1 < 0 || o.t1 > 1)
     throw UsageError("--t0 and --t1 must lie in [0, 1] (normalised animation time)");
+  if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
+  if (o.steps == 0) o.keyframes.resize(1);  // adapt once, at the first time
   std::unique_ptr<Surface> surface = build_scene(o, log);
   check_outputs(o);
   std::unique_ptr<StatsCsvWriter> csv;
@@ -148,43 +368,44 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
   }
 
   const SnapshotFields fields = fields_for(o, *surface);
+  RunOutputs written;
   std::unique_ptr<FrameRenderer> frames;
-  if (!o.render_dir.empty()) frames = std::make_unique<FrameRenderer>(o, o.adapt.threshold);
-  surface->set_time(o.t0);
+  if (!o.render_dir.empty())
+    frames = std::make_unique<FrameRenderer>(o, o.adapt.threshold, written);
+  std::unique_ptr<FrameExporter> exporter;
+  if (!o.export_dir.empty()) exporter = std::make_unique<FrameExporter>(o.export_dir, written);
+  check_memory_budget(o);
+  try {
+    check_workload(o, *surface);
+  } catch (const std::invalid_argument& e) {  // the surface's own checks at a later time
+    throw UsageError(e.what());
+  }
+  surface->set_time(o.keyframes.front());
+  if (o.max_seconds > 0)
+    o.adapt.deadline = std::chrono::steady_clock::now() +
+                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(o.max_seconds));
   Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
   RunSummary summary;
   summary.scene = o.scene;
-  summary.steps = o.steps;
+  summary.steps = static_cast<int>(step_times(o).size());
   std::vector<double> step_seconds;
-  auto record = [&](const StepStats& s) {
-    summary.total_splits += s.splits;
-    summary.total_welds += s.welds;
-    summary.budget_hit = summary.budget_hit || s.budget_hit;
-    if (csv) csv->write(s, summary.total_splits, summary.total_welds);
-    if (!o.quiet) log_step(log, s, o.steps);
-    if (o.check) {
-      const CheckReport report = adapter.mesh().check();
-      if (!report.ok()) throw std::logic_error("mesh invariants broken: " + report.summary(5));
-    }
-    if (s.step % static_cast<std::uint64_t>(o.export_every) != 0) return;
-    if (!o.export_dir.empty() || frames) {
-      const MeshSnapshot snap = adapter.snapshot(fields);
-      if (!o.export_dir.empty()) write_ply(frame_name(o.export_dir, s.step, "ply"), snap);
-      if (frames) frames->render(snap, s.step);
-    }
-  };
-  // A surface that turns bad during the run (a formula that becomes NaN at some t) throws
-  // std::invalid_argument before the mesh is touched: bad input, exit status 2.
   try {
-    record(adapter.initialize());
-    for (int i = 1; i <= o.steps; ++i) {
-      const double t = o.t0 + (o.t1 - o.t0) * i / o.steps;
-      const StepStats& s = adapter.step(t);
-      step_seconds.push_back(s.seconds.total);
-      record(s);
-    }
+    run_steps(o, adapter, fields, csv.get(), exporter.get(), frames.get(), summary, step_seconds,
+              log);
+    if (frames) frames->finish();
+    if (exporter) exporter->finish();
+    if (!o.export_final_path.empty()) write_mesh(o.export_final_path, adapter.snapshot(fields));
+    if (csv) csv->close();
   } catch (const std::invalid_argument& e) {
+    // A surface that turns bad during the run (a formula that becomes NaN at some t) throws
+    // std::invalid_argument before the mesh is touched: bad input, exit status 2, and none of
+    // the run's files stay (the CSV and final mesh were never committed).
+    written.remove_all();
     throw UsageError(e.what());
+  } catch (...) {
+    written.remove_all();
+    throw;
   }
   summary.last = adapter.stats();
   if (step_seconds.empty()) step_seconds.push_back(summary.last.seconds.total);
@@ -192,13 +413,18 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
                    step_seconds.end());
   summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
   summary.quality = measure_quality(adapter.mesh());
-  if (!o.export_final_path.empty()) write_mesh(o.export_final_path, adapter.snapshot(fields));
   if (frames && !o.quiet)
     log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
-  if (csv) csv->close();
-  if (summary.budget_hit && !o.quiet)
+  // Budget hits are reported even with --quiet: the result is not what was asked for.
+  if (summary.budget_hit)
     log << "note: the triangle budget (--max-triangles " << o.adapt.max_triangles
         << ") stopped refinement; errors may exceed T + eps\n";
+  if (summary.sample_budget_hit)
+    log << "note: the sample budget (--max-samples " << o.adapt.max_samples
+        << ") stopped refinement; errors may exceed T + eps\n";
+  if (summary.time_budget_hit)
+    log << "note: the time budget (--max-seconds " << o.max_seconds << ") stopped the run after "
+        << summary.steps_done << " of " << summary.steps << " steps; errors may exceed T + eps\n";
   out << to_json(summary) << std::endl;
   return 0;
 }

@@ -1,28 +1,49 @@
 #include "app/cli/run_options.h"
 
-#include <charconv>
+#include "app/render/color_scale.h"
+
 #include <cmath>
 #include <functional>
 #include <map>
+#include <sstream>
+
+#include "core/io/number_text.h"
 
 namespace dynamesh {
 namespace {
 
+std::string format_number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
 double parse_number(const std::string& option, const std::string& text) {
-  double value = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value))
-    throw UsageError(option + " expects a number, got '" + text + "'");
-  return value;
+  const std::optional<double> value = parse_finite_number(text);
+  if (!value) throw UsageError(option + " expects a number, got '" + text + "'");
+  return *value;
 }
 
 long parse_integer(const std::string& option, const std::string& text) {
-  const double value = parse_number(option, text);
-  if (value != std::floor(value) || std::abs(value) > 9e15)
-    throw UsageError(option + " expects a whole number, got '" + text + "'");
-  return static_cast<long>(value);
+  const std::optional<long long> value = parse_whole_number(text, -9'000'000'000'000'000LL,
+                                                            9'000'000'000'000'000LL);
+  if (!value) throw UsageError(option + " expects a whole number, got '" + text + "'");
+  return static_cast<long>(*value);
 }
+
+// A whole number in [lo, hi]: values beyond an int are refused, never wrapped.
+int parse_int(const std::string& option, const std::string& text, long lo, long hi) {
+  const long value = parse_integer(option, text);
+  if (value < lo || value > hi)
+    throw UsageError(option + " must be between " + std::to_string(lo) + " and " +
+                     std::to_string(hi) + ", got " + text);
+  return static_cast<int>(value);
+}
+
+// Large enough for any real use, small enough that nothing wraps or runs for days.
+constexpr long kMaxSteps = 10'000'000;
+constexpr long kMaxSmoothIterations = 1000;
+constexpr long kMaxImageSide = 16384;
 
 using Setter =
     std::function<void(RunOptions&, const std::string& option, const std::string& value)>;
@@ -39,12 +60,49 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError(e.what());
          }
        }},
-      {"--t0", [](RunOptions& o, auto& k, auto& v) { o.t0 = parse_number(k, v); }},
-      {"--t1", [](RunOptions& o, auto& k, auto& v) { o.t1 = parse_number(k, v); }},
-      {"--steps",
-       [](RunOptions& o, auto& k, auto& v) { o.steps = static_cast<int>(parse_integer(k, v)); }},
+      {"--t0",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.t0 = parse_number(k, v);
+         o.interval_given = true;
+       }},
+      {"--t1",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.t1 = parse_number(k, v);
+         o.interval_given = true;
+       }},
+      {"--keyframes",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.keyframes.clear();
+         std::size_t start = 0;
+         for (std::size_t comma; start <= v.size(); start = comma + 1) {
+           comma = std::min(v.find(',', start), v.size());
+           o.keyframes.push_back(parse_number(k, v.substr(start, comma - start)));
+         }
+         if (o.keyframes.size() < 2)
+           throw UsageError(k + " expects at least two times, e.g. 0,1,0");
+       }},
+      {"--camera",
+       [](RunOptions& o, auto& k, auto& v) {
+         try {
+           o.camera = parse_camera_view(v);
+         } catch (const std::invalid_argument& e) {
+           throw UsageError(k + ": " + e.what());
+         }
+       }},
+      {"--color-range",
+       [](RunOptions& o, auto& k, auto& v) {
+         try {
+           parse_color_range(v, o.colors);
+         } catch (const std::invalid_argument& e) {
+           throw UsageError(k + ": " + e.what());
+         }
+       }},
+      {"--steps", [](RunOptions& o, auto& k, auto& v) { o.steps = parse_int(k, v, 0, kMaxSteps); }},
       {"--threshold",
-       [](RunOptions& o, auto& k, auto& v) { o.adapt.threshold = parse_number(k, v); }},
+       [](RunOptions& o, auto& k, auto& v) {
+         o.adapt.threshold = parse_number(k, v);
+         o.threshold_given = true;
+       }},
       {"--epsilon",
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.epsilon = parse_number(k, v);
@@ -55,10 +113,16 @@ const std::map<std::string, Setter>& valued_options() {
          o.adapt.density = parse_number(k, v);
          o.density_given = true;
        }},
+      {"--sampling",
+       [](RunOptions& o, auto&, auto& v) {
+         if (v != "predictive" && v != "full")
+           throw UsageError("--sampling must be predictive or full, got '" + v + "'");
+         o.adapt.sampling = v == "full" ? Sampling::kFull : Sampling::kPredictive;
+       }},
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
        [](RunOptions& o, auto& k, auto& v) {
-         o.adapt.smoothing.iterations = static_cast<int>(parse_integer(k, v));
+         o.adapt.smoothing.iterations = parse_int(k, v, 0, kMaxSmoothIterations);
        }},
       {"--edge-length",
        [](RunOptions& o, auto& k, auto& v) { o.edge_length = parse_number(k, v); }},
@@ -67,6 +131,23 @@ const std::map<std::string, Setter>& valued_options() {
          const long n = parse_integer(k, v);
          if (n < 2) throw UsageError("--max-triangles must be at least 2, got " + v);
          o.adapt.max_triangles = static_cast<std::size_t>(n);
+       }},
+      {"--max-samples",
+       [](RunOptions& o, auto& k, auto& v) {
+         const long n = parse_integer(k, v);
+         if (n < 1000) throw UsageError("--max-samples must be at least 1000, got " + v);
+         o.adapt.max_samples = static_cast<std::size_t>(n);
+       }},
+      {"--max-seconds",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.max_seconds = parse_number(k, v);
+         if (!(o.max_seconds > 0)) throw UsageError("--max-seconds must be positive, got " + v);
+       }},
+      {"--max-memory",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.max_memory_mb = parse_number(k, v);
+         if (!(o.max_memory_mb >= 64))
+           throw UsageError("--max-memory must be at least 64 (MiB), got " + v);
        }},
       {"--seed",
        [](RunOptions& o, auto& k, auto& v) {
@@ -82,7 +163,7 @@ const std::map<std::string, Setter>& valued_options() {
       {"--height",
        [](RunOptions& o, auto& k, auto& v) {
          if (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos)
-           o.height = static_cast<int>(parse_integer(k, v));
+           o.height = parse_int(k, v, 16, kMaxImageSide);
          else
            o.scene_text.emplace_back("height", v);
        }},
@@ -92,8 +173,8 @@ const std::map<std::string, Setter>& valued_options() {
        [](RunOptions& o, auto& k, auto& v) {
          const auto x = v.find('x');
          if (x == std::string::npos) throw UsageError(k + " expects WIDTHxHEIGHT, e.g. 1920x1080");
-         o.width = static_cast<int>(parse_integer(k, v.substr(0, x)));
-         o.height = static_cast<int>(parse_integer(k, v.substr(x + 1)));
+         o.width = parse_int(k, v.substr(0, x), 16, kMaxImageSide);
+         o.height = parse_int(k, v.substr(x + 1), 16, kMaxImageSide);
        }},
       {"--parametric",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("parametric", v); }},
@@ -108,13 +189,18 @@ const std::map<std::string, Setter>& valued_options() {
       {"--export", [](RunOptions& o, auto&, auto& v) { o.export_dir = v; }},
       {"--export-every",
        [](RunOptions& o, auto& k, auto& v) {
-         o.export_every = static_cast<int>(parse_integer(k, v));
-         if (o.export_every < 1) throw UsageError("--export-every must be at least 1");
+         o.export_every = parse_int(k, v, 1, kMaxSteps);
        }},
       {"--render", [](RunOptions& o, auto&, auto& v) { o.render_dir = v; }},
       {"--width",
-       [](RunOptions& o, auto& k, auto& v) { o.width = static_cast<int>(parse_integer(k, v)); }},
+       [](RunOptions& o, auto& k, auto& v) { o.width = parse_int(k, v, 16, kMaxImageSide); }},
       {"--color", [](RunOptions& o, auto&, auto& v) { o.color = v; }},
+      {"--smooth-weights",
+       [](RunOptions& o, auto& k, auto& v) {
+         if (v != "uniform" && v != "inverse-length")
+           throw UsageError(k + " expects uniform or inverse-length, got '" + v + "'");
+         o.adapt.smoothing.scale_invariant_weights = v == "inverse-length";
+       }},
   };
   return table;
 }
@@ -127,6 +213,8 @@ const std::map<std::string, std::function<void(RunOptions&)>>& flag_options() {
       {"--no-smooth", [](RunOptions& o) { o.adapt.smoothing.enabled = false; }},
       {"--no-structural", [](RunOptions& o) { o.adapt.structural = false; }},
       {"--no-geometric", [](RunOptions& o) { o.adapt.geometric = false; }},
+      {"--wireframe", [](RunOptions& o) { o.wireframe = true; }},
+      {"--no-wireframe", [](RunOptions& o) { o.wireframe = false; }},
   };
   return table;
 }
@@ -134,10 +222,16 @@ const std::map<std::string, std::function<void(RunOptions&)>>& flag_options() {
 void validate(RunOptions& o) {
   const AdaptOptions& a = o.adapt;
   if (!(a.threshold > 0)) throw UsageError("--threshold must be positive (try 0.008)");
-  if (!o.epsilon_given) o.adapt.epsilon = 0.25 * a.threshold;
-  if (o.adapt.epsilon < 0 || o.adapt.epsilon >= a.threshold)
-    throw UsageError(
-        "--epsilon must be in [0, threshold): the weld bound T - eps must stay positive");
+  if (o.adapt.epsilon < 0) throw UsageError("--epsilon must not be negative");
+  // Against a given T here; against the scene's T in apply_scene_defaults.
+  if (o.threshold_given && o.epsilon_given && o.adapt.epsilon >= a.threshold)
+    throw UsageError("--epsilon " + format_number(o.adapt.epsilon) + " must be below --threshold " +
+                     format_number(a.threshold) + ": the weld bound T - eps must stay positive");
+  if (!o.keyframes.empty() && o.interval_given)
+    throw UsageError("--keyframes replaces --t0 and --t1: give one or the other");
+  for (double t : o.keyframes)
+    if (t < 0 || t > 1) throw UsageError("--keyframes: every time must lie in [0, 1]");
+  if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
   if (!(a.density > 0)) throw UsageError("--density must be positive (samples per unit area)");
   if (o.steps < 0) throw UsageError("--steps must not be negative (0 adapts once at --t0)");
   if (a.smoothing.iterations < 0) throw UsageError("--smooth-iters must not be negative");
@@ -158,9 +252,13 @@ void apply_scene_defaults(RunOptions& o, const SceneInfo& scene) {
   if (!o.threshold_given) o.adapt.threshold = scene.suggested_threshold;
   if (!o.density_given) o.adapt.density = scene.suggested_density;
   if (!o.epsilon_given) o.adapt.epsilon = 0.25 * o.adapt.threshold;
-  if (o.adapt.epsilon >= o.adapt.threshold)
-    throw UsageError("--epsilon must be below the threshold (" + std::to_string(o.adapt.threshold) +
-                     " for scene " + scene.name + "): the weld bound T - eps must stay positive");
+  if (o.adapt.epsilon >= o.adapt.threshold) {
+    const std::string which = o.threshold_given ? "--threshold " + format_number(o.adapt.threshold)
+                                                : "the threshold of scene " + scene.name + ", " +
+                                                      format_number(o.adapt.threshold);
+    throw UsageError("--epsilon " + format_number(o.adapt.epsilon) + " must be below " + which +
+                     ": the weld bound T - eps must stay positive");
+  }
 }
 
 RunOptions parse_run_options(const std::vector<std::string>& args) {
@@ -175,6 +273,7 @@ RunOptions parse_run_options(const std::vector<std::string>& args) {
     if (opt == valued_options().end())
       throw UsageError("unknown option '" + word + "' (see dynamesh-cli run --help)");
     if (i + 1 >= args.size()) throw UsageError(word + " needs a value");
+    if (args[i + 1].empty()) throw UsageError(word + " needs a value, got an empty string");
     opt->second(o, word, args[++i]);
   }
   validate(o);
@@ -188,6 +287,7 @@ Usage:
   dynamesh-cli run [options]     run a scene over time; see 'dynamesh-cli run --help'
   dynamesh-cli scenes            list the scenes and their parameters
   dynamesh-cli --help            this text
+  dynamesh-cli --version         the version
 
 Example:
   dynamesh-cli run --scene sinc --steps 100 --threshold 0.004 --stats sinc.csv \
@@ -200,9 +300,11 @@ std::string run_help() {
 
 Adapts the scene's base mesh to S(t0), then takes N steps to t1, keeping every sampled
 error within T + eps with few triangles (de Goes et al. 2006). Progress goes to stderr;
-the last line of stdout is a JSON summary (triangles, vertices, max_sample_error,
-mean_sample_error, splits, welds, seconds_per_step (median), valence_min, valence_max,
-min_angle_deg, ...). Bad input: one line on stderr and exit status 2.
+the last line of stdout is a JSON summary: the last step's triangles, vertices,
+max_sample_error, mean_sample_error; over the run splits, welds, seconds_per_step
+(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles;
+the final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
+stderr, exit status 2, and none of the run's output files.
 
 Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
@@ -212,8 +314,10 @@ Scene:
                          (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh
 Time:
-  --t0 T0 --t1 T1        animation interval [0, 1]
-  --steps N              N steps from t0 to t1; 0 adapts once at t0  [50]
+  --t0 T0 --t1 T1        animation interval [0, 1]  [0, 1]
+  --keyframes T0,T1,...  visit these times in order instead (0,1,0: there and back)
+  --steps N              N steps per interval (per keyframe segment); 0 adapts once at t0
+                         [50]; step 0 is the initial adaptation, so N steps give N+1 rows
 Adaptation:
   --threshold T          target geometric error, scene units  [the scene's: 0.008; mri 0.5 mm]
   --epsilon E            hysteresis: weld below T-E, split above T+E, 0 <= E < T  [T/4]
@@ -221,23 +325,46 @@ Adaptation:
                          mri 2 per mm^2]
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
   --max-triangles M      refinement budget (reported when hit)  [2000000]
+  --max-samples S        sample budget: refinement stops beyond S samples (reported)
+                         [50000000]
+  --max-seconds S        wall-time budget: refinement and stepping stop after S seconds,
+                         the run ends with what it has (reported)  [no limit]
+  --max-memory MB        refused before starting when the budgets above could need more
+                         memory than MB MiB (an estimate)  [4096]
   --seed S               sample jitter seed  [1]
+  --sampling MODE        predictive: re-measure only faces whose error may have left the
+                         band since last measured; full: every face every step  [predictive]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
+  --smooth-weights W     the one-ring centroid of Equation 1: uniform (the paper's) or
+                         inverse-length (scale-invariant: keeps the 4-8 grading)  [uniform]
   --smooth-raw-curvature use raw curvature in Equation 1 (default: normalised to [0, 1])
   --no-smooth            no tangential smoothing
   --no-structural        no splits or welds (the mesh only moves)
-  --no-geometric         no vertex correction (the mesh only refines)
+  --no-geometric         no vertex correction: an ablation showing that splits and welds
+                         alone cannot follow a moving surface; the run stops (status 2) at
+                         the first step whose error exceeds T + eps
 Output:
-  --stats FILE.csv       one row per step (step 0 is the initial adaptation)
+  --stats FILE.csv       one row per step (step 0 is the initial adaptation); - : stdout
   --export-final FILE    the final mesh (.ply binary with per-vertex error, or .obj)
-  --export DIR           a PLY (with the --color field) every --export-every K steps  [1]
+  --export DIR           every --export-every K steps [1] a PLY and a VTK .vtp (with the
+                         --color field), and DIR/frames.pvd: open it in ParaView to play them
   --render DIR           a PNG every --export-every K steps, rendered offscreen (no display
                          needed), --size WxH or --width W --height H  [1280x960]
   --color MODE           error | curvature | intensity (mri) | valence | level | shaded
                          [error: yellow = none, green, red = at or beyond T]
+  --color-range R        what curvature, intensity and level colours span: frame (each
+                         frame's own), first (the first frame's), run (the whole run's),
+                         or MIN,MAX  [frame]
+  --wireframe, --no-wireframe   draw the mesh's edges on the rendered frames  [drawn]
+  --camera VIEW          fit, or AZIMUTH,ELEVATION[,DISTANCE]: degrees about +y and above
+                         the ground plane (90: from above, -90: from below), distance from
+                         the centre in scene units  [fit: 30,20, fitted]
   --check                verify the mesh invariants after every step (slow)
   --quiet                no progress lines
+Files are written whole or not at all (a temporary name, then renamed); /dev/stdout, a
+FIFO or - are written directly. A run stopped by Ctrl-C or SIGTERM leaves no partial
+file: frames already written stay, the CSV and the final mesh do not appear.
 )";
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/render/camera.h"
+#include "app/render/render_style.h"
 #include "core/adapt/adapt_options.h"
 #include "core/surface/scene_registry.h"
 
@@ -21,6 +23,10 @@ struct RunOptions {
   ParameterOverrides params;
   TextOptions scene_text;  // --volume, --implicit, ... for scenes that read text
   double t0 = 0.0, t1 = 1.0;
+  bool interval_given = false;  // --t0 or --t1
+  // The times the animation visits in order, --steps steps per segment; filled from t0, t1
+  // when --keyframes is not given.
+  std::vector<double> keyframes;
   int steps = 50;
   AdaptOptions adapt;
   bool threshold_given = false, epsilon_given = false, density_given = false;
@@ -29,6 +35,11 @@ struct RunOptions {
   int export_every = 1;
   int width = 1280, height = 960;
   std::string color = "error";
+  double max_seconds = 0.0;      // 0: no wall-time budget
+  double max_memory_mb = 4096.0;  // the budgets' memory estimate must stay below
+  ColorSettings colors;  // --color-range (and the threshold, set once it is known)
+  bool wireframe = true;
+  CameraView camera;
   bool quiet = false;
   bool check = false;  // run the mesh invariant check after every step
 };

@@ -16,6 +16,25 @@ std::string number(double x) {
 
 }  // namespace
 
+void RunSummary::add(const StepStats& s) {
+  total_splits += s.splits;
+  total_welds += s.welds;
+  budget_hit = budget_hit || s.budget_hit;
+  sample_budget_hit = sample_budget_hit || s.sample_budget_hit;
+  time_budget_hit = time_budget_hit || s.time_budget_hit;
+  steps_done = s.step;
+  if (s.triangles > peak_triangles) {
+    peak_triangles = s.triangles;
+    peak_triangles_step = s.step;
+  }
+  if (s.max_error > worst_max_error) {
+    worst_max_error = s.max_error;
+    worst_max_error_step = s.step;
+  }
+  topology_events.insert(topology_events.end(), s.topology_events.begin(), s.topology_events.end());
+  rebuilds += s.rebuilt;
+}
+
 std::string to_json(const RunSummary& s) {
   std::ostringstream out;
   const StepStats& l = s.last;
@@ -33,7 +52,25 @@ std::string to_json(const RunSummary& s) {
       << ",\"vertices_kept\":" << l.vertices_kept
       << ",\"kept_fraction\":" << number(l.kept_fraction)
       << ",\"survivor_displacement_mean\":" << number(l.survivor_displacement_mean)
-      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false") << "}";
+      << ",\"budget_hit\":" << (s.budget_hit ? "true" : "false")
+      << ",\"sample_budget_hit\":" << (s.sample_budget_hit ? "true" : "false")
+      << ",\"time_budget_hit\":" << (s.time_budget_hit ? "true" : "false")
+      << ",\"steps_done\":" << s.steps_done << ",\"peak_triangles\":" << s.peak_triangles
+      << ",\"peak_triangles_step\":" << s.peak_triangles_step
+      << ",\"worst_max_sample_error\":" << number(s.worst_max_error)
+      << ",\"worst_max_sample_error_step\":" << s.worst_max_error_step
+      << ",\"keyframe_triangles\":[";
+  for (std::size_t i = 0; i < s.keyframe_triangles.size(); ++i)
+    out << (i ? "," : "") << s.keyframe_triangles[i];
+  out << "]"
+      << ",\"rebuilds\":" << s.rebuilds << ",\"topology_events\":[";
+  for (std::size_t i = 0; i < s.topology_events.size(); ++i) {
+    const TopologyEvent& e = s.topology_events[i];
+    out << (i ? "," : "") << "{\"time\":" << number(e.time) << ",\"kind\":\"" << to_string(e.kind)
+        << "\",\"position\":[" << number(e.position.x()) << ',' << number(e.position.y()) << ','
+        << number(e.position.z()) << "]}";
+  }
+  out << "]}";
   return out.str();
 }
 

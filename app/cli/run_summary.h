@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/adapt/step_stats.h"
 #include "core/geometry/mesh_quality.h"
@@ -16,6 +17,21 @@ struct RunSummary {
   double seconds_per_step_median = 0.0;
   MeshQuality quality;
   bool budget_hit = false;  // in any step
+  bool sample_budget_hit = false, time_budget_hit = false;
+  std::uint64_t steps_done = 0;  // fewer than `steps` when the time budget stopped the run
+  // Over the whole run, initialisation included: the most triangles and the largest sampled
+  // error of any step, and the steps they occurred at (the last step alone may hide them).
+  std::size_t peak_triangles = 0;
+  std::uint64_t peak_triangles_step = 0;
+  double worst_max_error = 0.0;
+  std::uint64_t worst_max_error_step = 0;
+  // The triangle count on arriving at each keyframe (the first: after initialisation).
+  std::vector<std::size_t> keyframe_triangles;
+
+  // Takes one step's statistics into the run's totals and extremes.
+  void add(const StepStats& s);
+  std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
+  std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
 };
 
 std::string to_json(const RunSummary& s);

@@ -32,7 +32,7 @@ struct OffscreenRenderer::Impl {
       return;
     }
     camera.normalize_size = o.normalize_size;
-    if (!camera_fitted || o.refit_each_frame) camera.reset(renderer.bounds(), aspect);
+    if (!camera_fitted || o.refit_each_frame) camera.look(o.view, renderer.bounds(), aspect);
     camera_fitted = true;
   }
 };
@@ -64,6 +64,10 @@ Image OffscreenRenderer::render(const MeshSnapshot& snapshot, const OffscreenOpt
 void OffscreenRenderer::render_to_png(const MeshSnapshot& snapshot, const OffscreenOptions& o,
                                       const std::string& path) {
   write_png(render(snapshot, o), path);
+}
+
+void OffscreenRenderer::restart_color_range(const FieldStats& whole_run) {
+  impl_->renderer.restart_color_range(whole_run);
 }
 
 const Camera& OffscreenRenderer::camera() const {

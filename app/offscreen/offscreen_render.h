@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/render/camera.h"
+#include "app/render/color_scale.h"
 #include "app/render/gpu_mesh.h"
 #include "app/render/image.h"
 #include "app/render/render_style.h"
@@ -23,6 +24,8 @@ struct OffscreenOptions {
   // The view. Absent: the default three-quarter view fitted to the first frame, kept for
   // later frames so that motion shows (unless refit_each_frame).
   std::optional<Camera> camera;
+  // Without `camera`: the view it is fitted with (--camera; default: three-quarter, fitted).
+  CameraView view;
   bool refit_each_frame = false;
   bool normalize_size = false;  // scale the surface to a common size (see Camera)
   // A colour bar with numbers on the right, for scalar colour modes.
@@ -41,6 +44,9 @@ class OffscreenRenderer {
   // Renders and writes a PNG (atomically: temporary name, then rename).
   void render_to_png(const MeshSnapshot& snapshot, const OffscreenOptions& options,
                      const std::string& path);
+  // ColorRange::kFirstFrame and kRun start again with the next frame; kRun spans
+  // `whole_run` when given (MeshRenderer::restart_color_range).
+  void restart_color_range(const FieldStats& whole_run = {});
   // The camera used for the last frame (fitted or given).
   const Camera& camera() const;
   // How often mesh data went to the GPU (full / positions only / colour field).

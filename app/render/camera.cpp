@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -27,11 +28,48 @@ SceneBounds SceneBounds::from_points(const std::vector<float>& xyz, const Box3& 
   return b;
 }
 
+CameraView parse_camera_view(const std::string& text) {
+  CameraView v;
+  if (text == "fit") return v;
+  std::vector<float> numbers;
+  std::size_t start = 0;
+  for (std::size_t comma; start <= text.size(); start = comma + 1) {
+    comma = std::min(text.find(',', start), text.size());
+    const std::string word = text.substr(start, comma - start);
+    std::size_t used = 0;
+    float x = 0.0f;
+    try {
+      x = std::stof(word, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (word.empty() || used != word.size() || !std::isfinite(x))
+      throw std::invalid_argument("expects fit or AZIMUTH,ELEVATION[,DISTANCE] in degrees, got '" +
+                                  text + "'");
+    numbers.push_back(x);
+  }
+  if (numbers.size() < 2 || numbers.size() > 3)
+    throw std::invalid_argument("expects fit or AZIMUTH,ELEVATION[,DISTANCE], got '" + text + "'");
+  if (std::abs(numbers[1]) > 90.0f)
+    throw std::invalid_argument("the elevation must lie in [-90, 90] degrees");
+  if (numbers.size() == 3 && !(numbers[2] > 0.0f))
+    throw std::invalid_argument("the distance must be positive");
+  v.fit = false;
+  v.azimuth_deg = numbers[0];
+  v.elevation_deg = numbers[1];
+  v.distance = numbers.size() == 3 ? numbers[2] : 0.0f;
+  return v;
+}
+
+glm::quat Camera::rotation_from(float azimuth_deg, float elevation_deg) {
+  const glm::quat pitch = glm::angleAxis(glm::radians(elevation_deg), glm::vec3(1, 0, 0));
+  const glm::quat yaw = glm::angleAxis(glm::radians(-azimuth_deg), glm::vec3(0, 1, 0));
+  return pitch * yaw;
+}
+
 glm::quat Camera::default_rotation() {
   // A three-quarter view from slightly above: reads depth better than straight on.
-  const glm::quat pitch = glm::angleAxis(glm::radians(20.0f), glm::vec3(1, 0, 0));
-  const glm::quat yaw = glm::angleAxis(glm::radians(-30.0f), glm::vec3(0, 1, 0));
-  return pitch * yaw;
+  return rotation_from(CameraView{}.azimuth_deg, CameraView{}.elevation_deg);
 }
 
 glm::mat4 Camera::model(const SceneBounds& bounds) const {
@@ -111,6 +149,12 @@ void Camera::fit(const SceneBounds& bounds, float aspect) {
 void Camera::reset(const SceneBounds& bounds, float aspect) {
   rotation = default_rotation();
   fit(bounds, aspect);
+}
+
+void Camera::look(const CameraView& v, const SceneBounds& bounds, float aspect) {
+  rotation = rotation_from(v.azimuth_deg, v.elevation_deg);
+  fit(bounds, aspect);
+  if (!v.fit && v.distance > 0.0f) distance = v.distance;
 }
 
 }  // namespace dynamesh

@@ -5,6 +5,7 @@
 // Cursor positions are normalised device coordinates: x, y in [-1, 1], y up.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,6 +24,20 @@ struct SceneBounds {
   static SceneBounds from_points(const std::vector<float>& xyz, const Box3& box);
 };
 
+// A view given in numbers (--camera): azimuth and elevation in degrees (azimuth about +y,
+// from +z towards +x; elevation above the xz plane, 90 looks straight down), and the
+// distance from the scene's centre in scene units (0: fitted to the scene).
+struct CameraView {
+  bool fit = true;  // "fit": the default three-quarter view, fitted
+  float azimuth_deg = 30.0f, elevation_deg = 20.0f;
+  float distance = 0.0f;
+
+  bool operator==(const CameraView&) const = default;
+};
+
+// "fit", "AZ,EL" or "AZ,EL,DIST". Throws std::invalid_argument saying what is wrong.
+CameraView parse_camera_view(const std::string& text);
+
 class Camera {
  public:
   // Plain state, public so the viewer can save and restore it.
@@ -33,6 +48,8 @@ class Camera {
   bool normalize_size = false;
 
   static glm::quat default_rotation();
+  // World -> view rotation of a camera at this azimuth and elevation (CameraView).
+  static glm::quat rotation_from(float azimuth_deg, float elevation_deg);
   bool operator==(const Camera&) const = default;
 
   glm::mat4 model(const SceneBounds& bounds) const;
@@ -48,6 +65,8 @@ class Camera {
   void fit(const SceneBounds& bounds, float aspect);
   // Default rotation, then fit.
   void reset(const SceneBounds& bounds, float aspect);
+  // The view `v` of the scene: its rotation, framed (or at its distance from the centre).
+  void look(const CameraView& v, const SceneBounds& bounds, float aspect);
 
  private:
   // The scene's bounds in the space the camera looks at (after model()).

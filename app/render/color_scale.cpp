@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -29,7 +31,68 @@ FieldStats field_stats(const std::vector<float>& values) {
   double sum = 0.0;
   for (float x : v) sum += x;
   s.mean = static_cast<float>(sum / static_cast<double>(v.size()));
+  s.count = v.size();
   return s;
+}
+
+FieldStats merge(const FieldStats& a, const FieldStats& b) {
+  if (!a.present) return b;
+  if (!b.present) return a;
+  FieldStats m;
+  m.present = true;
+  m.min = std::min(a.min, b.min);
+  m.max = std::max(a.max, b.max);
+  m.low = std::min(a.low, b.low);
+  m.high = std::max(a.high, b.high);
+  m.count = a.count + b.count;
+  const double wa = static_cast<double>(a.count), wb = static_cast<double>(b.count);
+  m.mean = m.count > 0 ? static_cast<float>((wa * a.mean + wb * b.mean) / (wa + wb))
+                       : 0.5f * (a.mean + b.mean);
+  return m;
+}
+
+void parse_color_range(const std::string& text, ColorSettings& into) {
+  if (text == "frame" || text == "first" || text == "run") {
+    into.range = text == "frame"   ? ColorRange::kFrame
+                 : text == "first" ? ColorRange::kFirstFrame
+                                   : ColorRange::kRun;
+    return;
+  }
+  const auto comma = text.find(',');
+  double lo = 0.0, hi = 0.0;
+  std::size_t used_lo = 0, used_hi = 0;
+  try {
+    if (comma != std::string::npos) {
+      lo = std::stod(text.substr(0, comma), &used_lo);
+      hi = std::stod(text.substr(comma + 1), &used_hi);
+    }
+  } catch (const std::exception&) {
+    used_lo = used_hi = 0;
+  }
+  if (comma == std::string::npos || used_lo != comma || used_hi != text.size() - comma - 1 ||
+      !std::isfinite(lo) || !std::isfinite(hi))
+    throw std::invalid_argument("expects frame, first, run or MIN,MAX, got '" + text + "'");
+  if (!(hi > lo)) throw std::invalid_argument("MIN,MAX needs MIN < MAX, got '" + text + "'");
+  into.range = ColorRange::kFixed;
+  into.range_min = lo;
+  into.range_max = hi;
+}
+
+std::string color_range_text(const ColorSettings& settings) {
+  switch (settings.range) {
+    case ColorRange::kFrame:
+      return "frame";
+    case ColorRange::kFirstFrame:
+      return "first";
+    case ColorRange::kRun:
+      return "run";
+    case ColorRange::kFixed:
+      break;
+  }
+  std::ostringstream out;
+  out.precision(17);
+  out << settings.range_min << ',' << settings.range_max;
+  return out.str();
 }
 
 bool has_color_scale(ColorMode mode, const FieldStats& stats) {
@@ -52,9 +115,15 @@ std::pair<float, float> data_range(float low, float high, const FieldStats& stat
   return {middle - 0.5f * least, middle + 0.5f * least};
 }
 
-ColorScale curvature_scale(const FieldStats& stats) {
+ColorScale curvature_scale(const FieldStats& stats, const ColorSettings& settings) {
   ColorScale s;
   s.label = "curvature";
+  if (settings.range == ColorRange::kFixed) {
+    s.min = static_cast<float>(settings.range_min);
+    s.max = static_cast<float>(settings.range_max);
+    s.map = s.min < 0.0f && s.max > 0.0f ? ColormapId::kCoolWarm : ColormapId::kViridis;
+    return s;
+  }
   if (stats.low < 0.0f && stats.high > 0.0f) {
     // Signed: a diverging map centred on zero, so flat stays neutral.
     const float m = std::max(-stats.low, stats.high);
@@ -82,7 +151,7 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
       s.max = static_cast<float>(settings.threshold);
       break;
     case ColorMode::kCurvature:
-      s = curvature_scale(stats);
+      s = curvature_scale(stats, settings);
       break;
     case ColorMode::kValence:
       // Eight bins for valences 3..10 (split-born vertices stay within 4..8).
@@ -92,9 +161,15 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
       s.discrete = true;
       break;
     case ColorMode::kLevel:
+      // Whole levels, one bin each (as valence): level 0 .. the deepest.
       s.map = ColormapId::kViridis;
-      s.min = 0.0f;
-      s.max = std::max(1.0f, stats.max);
+      s.min = -0.5f;
+      s.max = std::max(1.0f, stats.max) + 0.5f;
+      if (settings.range == ColorRange::kFixed) {
+        s.min = static_cast<float>(settings.range_min);
+        s.max = static_cast<float>(settings.range_max);
+      }
+      s.discrete = true;
       break;
     case ColorMode::kIntensity: {
       s.map = ColormapId::kGray;
@@ -105,6 +180,10 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
       s.min = static_cast<float>(level - 0.5 * window);
       s.max = static_cast<float>(level + 0.5 * window);
       if (settings.intensity_auto) std::tie(s.min, s.max) = data_range(s.min, s.max, stats);
+      if (settings.range == ColorRange::kFixed) {
+        s.min = static_cast<float>(settings.range_min);
+        s.max = static_cast<float>(settings.range_max);
+      }
       break;
     }
   }

@@ -16,9 +16,17 @@ struct FieldStats {
   float min = 0.0f, max = 0.0f;
   float low = 0.0f, high = 0.0f;  // 2nd and 98th percentiles
   float mean = 0.0f;
+  std::size_t count = 0;  // finite values
 };
 
 FieldStats field_stats(const std::vector<float>& values);
+// The summary of both fields' values together (percentiles: the wider of the two).
+FieldStats merge(const FieldStats& a, const FieldStats& b);
+
+// --color-range: "frame", "first", "run" or "MIN,MAX". Throws std::invalid_argument.
+void parse_color_range(const std::string& text, ColorSettings& into);
+// The text parse_color_range reads back.
+std::string color_range_text(const ColorSettings& settings);
 
 struct ColorScale {
   ColormapId map = ColormapId::kViridis;

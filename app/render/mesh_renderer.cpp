@@ -33,12 +33,28 @@ void MeshRenderer::set_geometry(const MeshSnapshot& snapshot) {
 }
 
 void MeshRenderer::set_scalar(const MeshSnapshot& snapshot, ColorMode mode) {
+  // Another mode is another field: its range starts again.
+  if (mode != scalar_mode_ && !run_stats_given_) range_restarted_ = true;
   scalar_mode_ = mode;
   const std::string name(color_mode_field(mode));
   const ScalarField* field = name.empty() ? nullptr : snapshot.field(name);
   const bool usable = field != nullptr && field->values.size() == snapshot.n_vertices();
   scalar_stats_ = usable ? field_stats(field->values) : FieldStats{};
+  if (range_restarted_ && scalar_stats_.present) {
+    first_stats_ = scalar_stats_;
+    if (!run_stats_given_) run_stats_ = scalar_stats_;
+    range_restarted_ = false;
+  } else if (!run_stats_given_) {
+    run_stats_ = merge(run_stats_, scalar_stats_);
+  }
   mesh_.upload_scalar(usable ? &field->values : nullptr);
+}
+
+void MeshRenderer::restart_color_range(const FieldStats& whole_run) {
+  range_restarted_ = true;
+  run_stats_given_ = whole_run.present;
+  run_stats_ = whole_run;
+  first_stats_ = {};
 }
 
 bool MeshRenderer::shows_color_scale(const RenderStyle& style) const {
@@ -46,7 +62,10 @@ bool MeshRenderer::shows_color_scale(const RenderStyle& style) const {
 }
 
 ColorScale MeshRenderer::color_scale(const RenderStyle& style) const {
-  return dynamesh::color_scale(style.mode, style.colors, scalar_stats_);
+  const FieldStats* range = &scalar_stats_;
+  if (style.colors.range == ColorRange::kFirstFrame && first_stats_.present) range = &first_stats_;
+  if (style.colors.range == ColorRange::kRun && run_stats_.present) range = &run_stats_;
+  return dynamesh::color_scale(style.mode, style.colors, *range);
 }
 
 void MeshRenderer::bind_colormap(ColormapId id) {
@@ -88,6 +107,7 @@ void MeshRenderer::draw(const Camera& camera, const RenderStyle& style,
   p.set("u_normal_matrix", glm::transpose(glm::inverse(glm::mat3(model_view))));
   p.set("u_viewport_size", glm::vec2(viewport_size));
   p.set("u_use_colormap", mapped);
+  p.set("u_categorical", mapped && scale.discrete);
   p.set("u_colormap", 0);
   p.set("u_scalar_range", glm::vec2(scale.min, scale.max));
   p.set("u_surface_color", style.surface_color);

@@ -50,6 +50,10 @@ class MeshRenderer {
   bool shows_color_scale(const RenderStyle& style) const;
   ColorScale color_scale(const RenderStyle& style) const;
   const FieldStats& scalar_stats() const { return scalar_stats_; }
+  // The next field shown starts the range of ColorRange::kFirstFrame and kRun again (a new
+  // run). With `whole_run`, kRun spans exactly these values (a batch render that knows the
+  // whole run before drawing it) instead of growing with each field shown.
+  void restart_color_range(const FieldStats& whole_run = {});
   const UploadCounters& uploads() const { return mesh_.counters(); }
   std::size_t n_triangles() const { return mesh_.n_triangles(); }
 
@@ -61,6 +65,8 @@ class MeshRenderer {
   SceneBounds bounds_;
   ColorMode scalar_mode_ = ColorMode::kShaded;
   FieldStats scalar_stats_;
+  FieldStats first_stats_, run_stats_;  // since restart_color_range(), in scalar_mode_
+  bool range_restarted_ = true, run_stats_given_ = false;
   unsigned colormap_texture_ = 0;
   int colormap_loaded_ = -1;  // ColormapId in the texture, -1 before the first upload
 };

@@ -2,14 +2,11 @@
 
 #include <stb_image_write.h>
 
-#include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <stdexcept>
-#include <system_error>
 #include <vector>
 
-#include <unistd.h>
+#include "core/io/atomic_file.h"
 
 namespace dynamesh {
 
@@ -21,20 +18,15 @@ void write_png(const Image& image, const std::string& path) {
   for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
     std::memcpy(&rgb[3 * i], &image.rgba[4 * i], 3);
   }
-  // The temporary name is unique per process, so parallel writers never collide.
-  const std::string temp = path + ".tmp" + std::to_string(::getpid());
-  if (stbi_write_png(temp.c_str(), image.width, image.height, 3, rgb.data(), 3 * image.width) ==
-      0) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  }
-  std::error_code error;
-  std::filesystem::rename(temp, path, error);
-  if (error) {
-    std::filesystem::remove(temp, error);
-    throw std::runtime_error("cannot write " + path + ": " + error.message());
-  }
+  // AtomicFile: complete or absent (also on Ctrl-C), and /dev/stdout written in place.
+  AtomicFile file(path, std::ios::binary);
+  const auto append = [](void* stream, void* data, int size) {
+    static_cast<std::ostream*>(stream)->write(static_cast<const char*>(data), size);
+  };
+  if (stbi_write_png_to_func(append, &file.stream(), image.width, image.height, 3, rgb.data(),
+                             3 * image.width) == 0)
+    throw std::runtime_error("cannot write " + path + ": PNG encoding failed");
+  file.commit();
 }
 
 }  // namespace dynamesh

@@ -8,12 +8,19 @@
 
 namespace dynamesh {
 
+// Which values a scale taken from the data (curvature, MR intensity, level) spans: each
+// frame's own (a video of a changing field flickers), the first frame's, the whole run's
+// (the viewer: every step since the last restart), or a range typed by the user.
+enum class ColorRange { kFrame, kFirstFrame, kRun, kFixed };
+
 struct ColorSettings {
   double threshold = 0.008;         // error mode: red at and beyond this (the adapter's T)
   bool error_viridis = false;       // error mode: viridis instead of yellow-green-red
   bool intensity_auto = true;       // intensity: window/level from the field's 2nd-98th pct.
   double intensity_window = 100.0;  // intensity: width of the grey ramp
   double intensity_level = 50.0;    // intensity: value shown mid-grey
+  ColorRange range = ColorRange::kFrame;
+  double range_min = 0.0, range_max = 1.0;  // kFixed: the values at the map's two ends
 
   bool operator==(const ColorSettings&) const = default;
 };

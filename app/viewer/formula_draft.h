@@ -20,10 +20,11 @@
 
 namespace dynamesh {
 
-// The panel's starting formulas for the kinds the core gives no default for.
+// The panel's starting formulas for the kinds the core gives no default for. The parametric
+// one is the wobbling tube of assets/examples, x = sin u, z = cos u so that Su x Sv faces out.
 inline constexpr const char* kDefaultHeightFormula = "0.15*sin(3*x + 2*pi*t)*cos(2*z)";
 inline constexpr std::array<const char*, 3> kDefaultParametricFormulas = {
-    "cos(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))", "v", "sin(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))"};
+    "sin(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))", "v", "cos(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))"};
 
 struct FormulaDraft {
   ExprKind kind = ExprKind::kImplicit;

@@ -17,20 +17,35 @@ int main(int argc, char** argv) {
     args = parse_viewer_args(words);
     const std::string state_file = state_file_for(args);
     ViewerState saved;
-    if (!args.fresh && !state_file.empty() && load_viewer_state(saved, state_file)) {
+    std::vector<std::string> rejected;
+    std::string notice;
+    if (!args.fresh && !state_file.empty() && load_viewer_state(saved, state_file, &rejected)) {
+      if (!rejected.empty()) {
+        // Shown in the panel too; those values keep their defaults.
+        std::string keys;
+        for (const std::string& k : rejected) keys += (keys.empty() ? "" : ", ") + k;
+        notice = "malformed saved values in " + state_file + " were ignored: " + keys;
+        std::fprintf(stderr, "dynamesh: %s\n", notice.c_str());
+      }
       try {
         args = parse_viewer_args(words, saved);
         args.camera_scene = saved.controls.scene;
         args.camera_text = saved.controls.scene_text;
       } catch (const std::exception& e) {  // the command line was fine over the defaults
-        std::fprintf(stderr, "dynamesh: ignoring the saved settings in %s (%s)\n",
-                     state_file.c_str(), e.what());
+        // Shown in the panel too: a broken file must not stop the program from starting.
+        notice = "ignoring the saved settings in " + state_file + " (" + e.what() + ")";
+        std::fprintf(stderr, "dynamesh: %s\n", notice.c_str());
       }
+      args.notice = notice;
     }
     args.state_file = state_file;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dynamesh: %s\n", e.what());
     return 2;
+  }
+  if (args.version) {
+    std::printf("dynamesh %s\n", DYNAMESH_VERSION);
+    return 0;
   }
   if (args.help) {
     std::fputs(viewer_usage().c_str(), stdout);

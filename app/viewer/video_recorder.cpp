@@ -91,4 +91,13 @@ std::string VideoRecorder::stop() {
   return result;
 }
 
+void VideoRecorder::cancel() {
+  if (!recording()) return;
+  failed_ = true;  // stop() then keeps no video
+  const std::string frames_dir = frames_dir_;
+  stop();
+  std::error_code ignored;
+  if (!frames_dir.empty()) fs::remove_all(frames_dir, ignored);
+}
+
 }  // namespace dynamesh

@@ -25,6 +25,8 @@ class VideoRecorder {
   void add_frame(const Image& frame);
   // Finishes the file; returns its path (empty when nothing was recording).
   std::string stop();
+  // Stops and removes what was recorded (a scripted run that failed keeps no video).
+  void cancel();
 
   bool recording() const { return pipe_ != nullptr || !frames_dir_.empty(); }
   int frames() const { return frames_; }

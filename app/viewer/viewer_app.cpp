@@ -91,8 +91,10 @@ class ViewerApp {
         examples_(load_formula_examples(find_examples_dir())),
         // Multisampling doubles the cost of a frame on a software renderer: there, none.
         view_samples_(GlfwWindow::is_software_renderer(window_.renderer()) ? 1 : 4),
-        fitted_scene_(args.camera_scene),
+        // --camera: the first mesh is framed with that view, whatever was saved.
+        fitted_scene_(args.camera ? std::string() : args.camera_scene),
         fitted_text_(args.camera_text) {
+    status_ = args.notice;  // e.g. why the saved settings were not used
     if (state_.window_x >= 0 && state_.window_y >= 0)
       window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);
@@ -167,6 +169,22 @@ class ViewerApp {
 };
 
 void ViewerApp::step_by(int direction) {
+  if (state_.keyframes.size() >= 2) {
+    // Along the keyframes: there and back again (--keyframes 0,1,0) is steps, not a clamp.
+    int next = state_.playhead + direction;
+    bool restart = false;
+    if (next > state_.keyframe_steps()) {
+      if (!state_.loop) {
+        state_.playing = false;
+        return;
+      }
+      next = 0;
+      restart = true;
+    }
+    state_.playhead = std::max(0, next);
+    request(state_.keyframe_time(state_.playhead), restart);
+    return;
+  }
   double t = state_.time + direction * state_.time_step();
   bool restart = false;
   if (t > state_.t1 + 1e-12) {
@@ -194,6 +212,8 @@ bool ViewerApp::take_results() {
       running_parameters_ = r.parameters;
       running_text_ = r.scene_text;
     }
+    // A new run (initialisation): fixed colour ranges (first frame, whole run) start again.
+    if (r.error.empty() && r.stepped && r.stats.step == 0) renderer_.restart_color_range();
     if (r.snapshot && r.snapshot != snapshot_) {
       snapshot_ = r.snapshot;
       ++snapshots_taken_;
@@ -225,7 +245,9 @@ bool ViewerApp::take_results() {
   if (snapshot_ && (running_scene_ != fitted_scene_ || running_text_ != fitted_text_)) {
     const glm::ivec4 v = view_rect();
     const float aspect = float(v.z) / float(std::max(1, v.w));
-    if (running_scene_ != fitted_scene_) {
+    if (args_.camera && fitted_scene_.empty()) {
+      state_.camera.look(*args_.camera, renderer_.bounds(), aspect);
+    } else if (running_scene_ != fitted_scene_) {
       state_.camera.reset(renderer_.bounds(), aspect);
     } else {
       state_.camera.fit(renderer_.bounds(), aspect);
@@ -320,6 +342,8 @@ void ViewerApp::handle_keys(PanelActions& a) {
   if (pressed(GLFW_KEY_P)) a.screenshot = true;
   if (pressed(GLFW_KEY_R)) a.toggle_recording = true;
   if (pressed(GLFW_KEY_H)) state_.show_panel = !state_.show_panel;
+  // Esc quits as closing the window does: the settings are saved on the way out.
+  if (pressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
 }
 
 void ViewerApp::apply(const PanelActions& a) {
@@ -339,11 +363,15 @@ void ViewerApp::apply(const PanelActions& a) {
     status_ = "settings reset to defaults";
   } else if (a.restart) {
     history_.clear();
-    request(state_.t0, true);
+    state_.playhead = 0;
+    request(state_.keyframes.empty() ? state_.t0 : state_.keyframe_time(0), true);
   } else if (a.step_forward) {
     step_by(+1);
   } else if (a.step_back) {
-    request(std::max(state_.t0, state_.time - state_.time_step()), false);
+    if (!state_.keyframes.empty())
+      step_by(-1);
+    else
+      request(std::max(state_.t0, state_.time - state_.time_step()), false);
   } else if (a.controls_changed) {
     request(state_.time, false);
   }
@@ -428,6 +456,10 @@ bool ViewerApp::save_settings() {
 }
 
 int ViewerApp::finish_scripted(double seconds) {
+  // What the run was asked to show could not be shown (a scene or formula that does not
+  // build): the screenshot shows the panel's red message over the last good mesh, the
+  // recording is not kept, and the run fails with status 2, as dynamesh-cli does.
+  if (!error_.empty()) recorder_.cancel();
   if (!args_.screenshot.empty()) write_png(read_window(), args_.screenshot);
   std::string recorded;
   if (recorder_.recording()) {
@@ -445,11 +477,17 @@ int ViewerApp::finish_scripted(double seconds) {
               renderer_.n_triangles(),
               args_.screenshot.empty() ? "" : (", screenshot " + args_.screenshot).c_str(),
               recorded.c_str());
-  std::printf("dynamesh: scene %s, %llu steps; uploads: %d full, %d positions only, %d colour\n",
-              running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
-              up.geometry, up.scalar);
+  std::printf(
+      "dynamesh: scene %s, last step shown %llu (step 0 is the initialisation); uploads: "
+      "%d full, %d positions only, %d colour\n",
+      running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
+      up.geometry, up.scalar);
   std::printf("dynamesh: %s\n", describe(summarize(frames_, seconds)).c_str());
-  if (!error_.empty()) std::printf("dynamesh: error shown: %s\n", error_.c_str());
+  if (!error_.empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "dynamesh: error shown: %s\n", error_.c_str());
+    return 2;
+  }
   return 0;
 }
 
@@ -459,7 +497,13 @@ bool ViewerApp::needs_frame() const {
 }
 
 bool ViewerApp::frame(bool timed_out) {
-  if (args_.frames >= 0) driver_.wait_idle();  // deterministic: one step per frame
+  if (args_.frames >= 0) {
+    // Deterministic: frame 1 shows the initialisation (step 0), frame k shows step k - 1,
+    // computed before the frame is drawn; N frames show steps 0 .. N - 1.
+    if (scripted_frames_ > 0 && scripted_frames_ < args_.frames) step_by(+1);
+    ++scripted_frames_;
+    driver_.wait_idle();
+  }
   const Clock::time_point frame_start = last_frame_start_ = Clock::now();
   FrameSample sample;
   sample.at_ms = std::chrono::duration<double, std::milli>(frame_start - started_).count();
@@ -495,10 +539,7 @@ bool ViewerApp::frame(bool timed_out) {
   // Playing: the next step once the last one is on screen (so none is skipped, and a
   // recording gets one frame per step: a fixed time step per frame).
   const bool shown_latest = driver_.results_published() == results_seen_;
-  if (args_.frames >= 0) {
-    if (scripted_frames_ > 0 && scripted_frames_ < args_.frames) actions.step_forward = true;
-    ++scripted_frames_;
-  } else if (state_.playing && !driver_.busy() && shown_latest) {
+  if (args_.frames < 0 && state_.playing && !driver_.busy() && shown_latest) {
     actions.step_forward = true;
   }
   if (args_.orbit) state_.camera.orbit({0.0f, 0.0f}, {0.004f, 0.0f});  // as if dragged

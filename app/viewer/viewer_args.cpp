@@ -1,32 +1,99 @@
 #include "app/viewer/viewer_args.h"
 
 #include <algorithm>
+#include <climits>
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
+#include "core/io/number_text.h"
+#include "app/render/color_scale.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
 namespace {
 
+// As dynamesh-cli run's limits (run_options.cpp).
+constexpr int kMaxSteps = 10'000'000;
+constexpr int kMaxSmoothIterations = 1000;
+
+// The same strict reading as dynamesh-cli run's (core/io/number_text.h).
 double to_number(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty()) {
-    throw std::invalid_argument(option + " expects a number, got '" + text + "'");
-  }
-  return v;
+  const std::optional<double> v = parse_finite_number(text);
+  if (!v) throw std::invalid_argument(option + " expects a number, got '" + text + "'");
+  return *v;
 }
 
-int to_int(const std::string& option, const std::string& text) {
-  const double v = to_number(option, text);
-  if (v != static_cast<int>(v)) throw std::invalid_argument(option + " expects an integer");
-  return static_cast<int>(v);
+int to_int(const std::string& option, const std::string& text, long long min = INT32_MIN,
+           long long max = INT32_MAX) {
+  const std::optional<long long> v = parse_whole_number(text, min, max);
+  if (!v)
+    throw std::invalid_argument(option + " expects a whole number in [" + std::to_string(min) +
+                                ", " + std::to_string(max) + "], got '" + text + "'");
+  return static_cast<int>(*v);
+}
+
+bool finite_in(double v, double lo, double hi) {
+  return std::isfinite(v) && v >= lo && v <= hi;
+}
+
+// Every value of the state, whether from the command line or from a saved settings file,
+// with the command line's rules (dynamesh-cli run's where the option is shared).
+void validate_state(const ViewerState& s) {
+  const SimulationControls& c = s.controls;
+  bool known = false;
+  for (const SceneInfo& info : list_scenes()) known = known || info.name == c.scene;
+  if (!known) {
+    const std::string shown = c.scene.size() > 40 ? c.scene.substr(0, 40) + "..." : c.scene;
+    throw std::invalid_argument("unknown scene '" + shown + "' (" +
+                                std::to_string(c.scene.size()) +
+                                " characters; dynamesh-cli scenes lists them)");
+  }
+  if (!(std::isfinite(c.threshold) && c.threshold > 0))
+    throw std::invalid_argument("--threshold must be positive");
+  if (!(c.epsilon >= 0 && c.epsilon < c.threshold))
+    throw std::invalid_argument("--epsilon must be in [0, threshold)");
+  if (!(std::isfinite(c.density) && c.density > 0))
+    throw std::invalid_argument("--density must be positive (samples per unit area)");
+  if (!(std::isfinite(c.k) && c.k >= 0)) throw std::invalid_argument("--k must not be negative");
+  if (!(std::isfinite(c.edge_length) && c.edge_length >= 0))
+    throw std::invalid_argument("--edge-length must be positive");
+  if (c.max_triangles < 8) throw std::invalid_argument("--max-triangles must be at least 8");
+  if (c.smooth_iterations < 0 || c.smooth_iterations > kMaxSmoothIterations)
+    throw std::invalid_argument("--smooth-iters must be between 0 and " +
+                                std::to_string(kMaxSmoothIterations));
+  if (s.steps < 1 || s.steps > kMaxSteps)
+    throw std::invalid_argument("--steps must be between 1 and " + std::to_string(kMaxSteps));
+  if (!(std::isfinite(s.t0) && std::isfinite(s.t1) && s.t0 >= 0 && s.t1 <= 1 && s.t0 <= s.t1))
+    throw std::invalid_argument("--t0 and --t1 must satisfy 0 <= t0 <= t1 <= 1");
+  if (!std::isfinite(s.time)) throw std::invalid_argument("time must be finite");
+  if (s.window_width < 64 || s.window_height < 64 || s.window_width > 8192 ||
+      s.window_height > 8192) {
+    throw std::invalid_argument("--width and --height must be between 64 and 8192");
+  }
+  // Saved view settings (no command-line option): the ranges the panel offers.
+  const Camera& cam = s.camera;
+  if (!finite_in(cam.distance, 1e-4, 1e5))
+    throw std::invalid_argument("camera.distance must be in [1e-4, 1e5]");
+  if (!finite_in(cam.fov_y_degrees, 5, 120))
+    throw std::invalid_argument("camera.fov_y_degrees must be in [5, 120]");
+  const glm::quat& q = cam.rotation;
+  const double q_norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  if (!finite_in(q_norm, 0.5, 2.0))
+    throw std::invalid_argument("camera.rotation must be a unit quaternion");
+  for (int a = 0; a < 3; ++a)
+    if (!finite_in(cam.target[a], -1e9, 1e9))
+      throw std::invalid_argument("camera.target must be finite");
+  if (!finite_in(s.style.wire_width, 0.5, 4.0))
+    throw std::invalid_argument("wire_width must be in [0.5, 4] pixels");
+  if (!finite_in(s.style.colors.intensity_window, 0, 1e9) ||
+      !finite_in(s.style.colors.intensity_level, -1e9, 1e9))
+    throw std::invalid_argument("intensity_window and intensity_level must be finite");
+  if (s.record_fps < 1 || s.record_fps > 240)
+    throw std::invalid_argument("record_fps must be between 1 and 240");
+  if (std::abs(s.window_x) > 100000 || std::abs(s.window_y) > 100000)
+    throw std::invalid_argument("window_x and window_y must be within 100000 pixels");
 }
 
 bool is_whole_number(const std::string& text) {
@@ -52,10 +119,15 @@ const char* text_option_key(const std::string& opt, const std::vector<std::strin
 
 std::string viewer_usage() {
   return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--volume FILE] [--t0 T] [--t1 T]\n"
+         "                [--keyframes T0,T1,...] (visited in order, --steps steps each)\n"
          "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
          "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
-         "                [--width W] [--height H] [--state FILE | --fresh]\n"
+         "                [--color-range frame|first|run|MIN,MAX] [--no-wireframe]\n"
+         "                [--camera fit|AZ,EL[,DIST]] [--width W] [--height H]\n"
+         "                [--state FILE | --fresh] [--version]\n"
+         "each scene opens at the T, eps, density and edge length last used with it (the\n"
+         "first time: the scene's suggestions, as dynamesh-cli run's defaults)\n"
          "a typed surface (scene expr; edit it in the panel's formula section):\n"
          "  --implicit F(x,y,z,t) --bounds xmin,ymin,zmin,xmax,ymax,zmax [--base-mesh FILE]\n"
          "  --height-field f(x,z,t) [--domain xmin,xmax,zmin,zmax]\n"
@@ -72,7 +144,8 @@ std::string viewer_usage() {
                                   : settings_path()) +
          "\n  (--state FILE: another file; --fresh: start from the defaults)\n"
          "keys: space play/pause, arrows step, W wireframe, C colour mode, F fit, P screenshot,\n"
-         "      R record, H panel.  mouse: left drag orbit, right/shift-left drag pan,\n"
+         "      R record, H panel, Esc quit (settings saved).  mouse: left drag orbit, "
+         "right/shift-left drag pan,\n"
          "      wheel zoom towards the cursor\n";
 }
 
@@ -85,16 +158,38 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   // (whatever the order of --scene and these options).
   ParameterOverrides parameters;
   TextOptions text;
+  // Another scene opens at its own settings (or those last used with it), before the
+  // options given here apply over them, whatever their order.
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == "--scene") {
+      const std::string& name = args[i + 1];
+      const std::vector<SceneInfo> scenes = list_scenes();
+      if (std::none_of(scenes.begin(), scenes.end(),
+                       [&](const SceneInfo& info) { return info.name == name; })) {
+        std::string names;
+        for (const SceneInfo& info : scenes) names += (names.empty() ? "" : ", ") + info.name;
+        throw std::invalid_argument(
+            "unknown scene '" + (name.size() > 40 ? name.substr(0, 40) + "...' (" +
+                                                        std::to_string(name.size()) + " characters)"
+                                                  : name + "'") +
+            " (scenes: " + names + ")");
+      }
+      switch_scene(s, name);
+    }
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& opt = args[i];
     const auto value = [&]() -> const std::string& {
       if (i + 1 >= args.size()) throw std::invalid_argument(opt + " needs a value");
+      if (args[i + 1].empty())
+        throw std::invalid_argument(opt + " needs a value, got an empty string");
       return args[++i];
     };
     if (opt == "--help" || opt == "-h") {
       a.help = true;
+    } else if (opt == "--version") {
+      a.version = true;
     } else if (opt == "--scene") {
-      s.controls.scene = value();
+      value();  // switched to above
     } else if (opt == "--param") {
       parameters.push_back(parse_parameter_override(value()));
     } else if (const char* key = text_option_key(opt, args, i)) {
@@ -103,8 +198,19 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       s.t0 = s.time = to_number(opt, value());
     } else if (opt == "--t1") {
       s.t1 = to_number(opt, value());
+    } else if (opt == "--keyframes") {
+      s.keyframes.clear();
+      const std::string& list = value();
+      for (std::size_t start = 0, comma; start <= list.size(); start = comma + 1) {
+        comma = std::min(list.find(',', start), list.size());
+        const double t = to_number(opt, list.substr(start, comma - start));
+        if (!(t >= 0 && t <= 1)) throw std::invalid_argument("--keyframes: times lie in [0, 1]");
+        s.keyframes.push_back(t);
+      }
+      if (s.keyframes.size() < 2)
+        throw std::invalid_argument("--keyframes expects at least two times, e.g. 0,1,0");
     } else if (opt == "--steps") {
-      s.steps = to_int(opt, value());
+      s.steps = to_int(opt, value(), 1, kMaxSteps);
     } else if (opt == "--threshold") {
       s.controls.threshold = to_number(opt, value());
       threshold_given = true;
@@ -113,22 +219,30 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       epsilon_given = true;
     } else if (opt == "--density") {
       s.controls.density = to_number(opt, value());
+    } else if (opt == "--wireframe" || opt == "--no-wireframe") {
+      s.style.wireframe = opt == "--wireframe";
+    } else if (opt == "--camera") {
+      a.camera = parse_camera_view(value());
+    } else if (opt == "--color-range") {
+      parse_color_range(value(), s.style.colors);
     } else if (opt == "--k") {
       s.controls.k = to_number(opt, value());
     } else if (opt == "--smooth-iters") {
-      s.controls.smooth_iterations = to_int(opt, value());
+      s.controls.smooth_iterations = to_int(opt, value(), 0, kMaxSmoothIterations);
     } else if (opt == "--edge-length") {
       s.controls.edge_length = to_number(opt, value());
     } else if (opt == "--max-triangles") {
-      s.controls.max_triangles = to_int(opt, value());
+      s.controls.max_triangles = to_int(opt, value(), 8, INT32_MAX);
     } else if (opt == "--seed") {
-      s.controls.seed = static_cast<unsigned>(to_int(opt, value()));
+      s.controls.seed = static_cast<unsigned>(to_int(opt, value(), 0, INT32_MAX));
     } else if (opt == "--play") {
       s.playing = true;
     } else if (opt == "--frames") {
-      a.frames = to_int(opt, value());
+      a.frames = to_int(opt, value(), 1, kMaxSteps);
     } else if (opt == "--run-for") {
       a.run_for = to_number(opt, value());
+      if (!(a.run_for > 0 && a.run_for <= 86400))
+        throw std::invalid_argument("--run-for must be between 0 and 86400 seconds");
     } else if (opt == "--orbit") {
       a.orbit = true;
     } else if (opt == "--screenshot") {
@@ -138,9 +252,9 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--frame-log") {
       a.frame_log = value();
     } else if (opt == "--width") {
-      s.window_width = to_int(opt, value());
+      s.window_width = to_int(opt, value(), 64, 8192);
     } else if (opt == "--height") {
-      s.window_height = to_int(opt, value());
+      s.window_height = to_int(opt, value(), 64, 8192);
     } else if (opt == "--state") {
       a.state_file = value();
     } else if (opt == "--fresh") {
@@ -155,32 +269,14 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       throw std::invalid_argument("unknown option '" + opt + "' (dynamesh --help lists them)");
     }
   }
-  // The saved parameters and text options belong to the saved scene. Text options given here
-  // describe the surface whole: saved ones (another formula, another volume) would only
-  // contradict them.
-  if (s.controls.scene != base.controls.scene) {
-    s.controls.scene_parameters.clear();
-    s.controls.scene_text.clear();
-  }
+  // Text options given here describe the surface whole: saved ones (another formula, another
+  // volume) would only contradict them. (switch_scene dropped the other scene's.)
   s.controls.scene_parameters.insert(s.controls.scene_parameters.end(), parameters.begin(),
                                      parameters.end());
   if (!text.empty()) s.controls.scene_text = text;
   // As dynamesh-cli run: eps defaults to T/4.
   if (threshold_given && !epsilon_given) s.controls.epsilon = 0.25 * s.controls.threshold;
-  const SimulationControls& c = s.controls;
-  if (!(c.threshold > 0)) throw std::invalid_argument("--threshold must be positive");
-  if (!(c.epsilon >= 0 && c.epsilon < c.threshold))
-    throw std::invalid_argument("--epsilon must be in [0, threshold)");
-  if (!(c.density > 0)) throw std::invalid_argument("--density must be positive");
-  if (c.max_triangles < 8) throw std::invalid_argument("--max-triangles must be at least 8");
-  if (c.smooth_iterations < 0) throw std::invalid_argument("--smooth-iters must not be negative");
-  if (s.steps < 1) throw std::invalid_argument("--steps must be at least 1");
-  if (!(s.t0 >= 0 && s.t1 <= 1 && s.t0 <= s.t1))
-    throw std::invalid_argument("--t0 and --t1 must satisfy 0 <= t0 <= t1 <= 1");
-  if (s.window_width < 64 || s.window_height < 64 || s.window_width > 8192 ||
-      s.window_height > 8192) {
-    throw std::invalid_argument("--width and --height must be between 64 and 8192");
-  }
+  validate_state(s);
   if (a.frames >= 0 && a.run_for >= 0)
     throw std::invalid_argument("--frames and --run-for exclude each other");
   if (!a.scripted() && (!a.screenshot.empty() || !a.record.empty() || !a.frame_log.empty()))
@@ -188,6 +284,12 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         "--screenshot, --record and --frame-log need --frames or --run-for");
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
+  if (!s.keyframes.empty()) {
+    s.t0 = *std::min_element(s.keyframes.begin(), s.keyframes.end());
+    s.t1 = *std::max_element(s.keyframes.begin(), s.keyframes.end());
+    s.playhead = 0;
+    s.time = s.keyframes.front();
+  }
   s.time = std::clamp(s.time, s.t0, s.t1);
   s.style.colors.threshold = s.controls.threshold;
   return a;

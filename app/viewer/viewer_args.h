@@ -5,6 +5,7 @@
 // dynamesh-cli run reads them, so an assets/examples/*.args file serves both.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct ViewerArgs {
   std::string camera_scene;
   TextOptions camera_text;
   bool help = false;
+  // Shown in the panel's status line at start (e.g. that broken saved settings were ignored).
+  std::string notice;
+  bool version = false;
+  // --camera: the view the first mesh is framed with (instead of the saved or default one).
+  std::optional<CameraView> camera;
 
   bool scripted() const { return frames >= 0 || run_for >= 0.0; }
 };

@@ -49,9 +49,7 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     for (const SceneInfo& scene : scenes) {
       if (ImGui::Selectable(scene.name.c_str(), scene.name == c.scene)) {
         if (scene.name != c.scene) {
-          c.scene = scene.name;
-          c.scene_parameters.clear();
-          c.scene_text.clear();
+          switch_scene(s, scene.name);  // its own T, eps, density, edge length
           a.restart = true;
         }
       }
@@ -105,19 +103,39 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   }
 }
 
-void adaptation_section(ViewerState& s, PanelActions& a) {
+// A slider for a setting that spans decades (T, eps, density): logarithmic, committed when
+// released (each value of a drag would restart the adaptation), Ctrl-click types a value.
+bool log_slider(const char* label, double& value, double lo, double hi, const char* format) {
+  ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &lo, &hi, format,
+                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("Adaptation", ImGuiTreeNodeFlags_DefaultOpen)) return;
   SimulationControls& c = s.controls;
   const SimulationControls before = c;
-  ImGui::InputDouble("threshold T", &c.threshold, 0.0005, 0.005, "%.6g", kOnEnter);
+  // The sliders span two decades either side of the scene's suggestions (its units).
+  double suggested_t = 0.008, suggested_density = 2000.0;
+  for (const SceneInfo& scene : *info.scenes)
+    if (scene.name == c.scene) {
+      suggested_t = scene.suggested_threshold;
+      suggested_density = scene.suggested_density;
+    }
+  bool changed =
+      log_slider("threshold T", c.threshold, 0.01 * suggested_t, 100 * suggested_t, "%.4g");
   // The band keeps its width relative to T (the CLI's default is T/4): T/100 with the old
   // absolute eps would leave no room to weld.
   if (c.threshold != before.threshold && before.threshold > 0)
     c.epsilon = before.epsilon * c.threshold / before.threshold;
-  ImGui::InputDouble("epsilon", &c.epsilon, 0.0001, 0.001, "%.6g", kOnEnter);
+  changed |= log_slider("epsilon", c.epsilon, 1e-3 * c.threshold, 0.99 * c.threshold, "%.4g");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("hysteresis half-width; follows T when T changes");
-  ImGui::InputDouble("density", &c.density, 500, 5000, "%.0f", kOnEnter);
-  ImGui::InputDouble("stiffness k", &c.k, 0.5, 1.0, "%.3g", kOnEnter);
+  changed |=
+      log_slider("density", c.density, 0.01 * suggested_density, 100 * suggested_density, "%.4g");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per unit area (at least 9 per triangle)");
+  const double k_lo = 0.0, k_hi = 10.0;
+  ImGui::SliderScalar("curvature sensitivity k", ImGuiDataType_Double, &c.k, &k_lo, &k_hi, "%.3g");
+  changed |= ImGui::IsItemDeactivatedAfterEdit();
   ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
   ImGui::InputDouble("edge length", &c.edge_length, 0.01, 0.1, "%.4g", kOnEnter);
   if (ImGui::IsItemHovered())
@@ -132,7 +150,10 @@ void adaptation_section(ViewerState& s, PanelActions& a) {
   c.edge_length = std::max(c.edge_length, 0.0);
   c.max_triangles = std::max(c.max_triangles, 8);
   s.style.colors.threshold = c.threshold;
-  a.controls_changed |= !(c == before);
+  // Sliders apply when released; the other fields on Enter (they change only then).
+  a.controls_changed |= changed || c.smooth_iterations != before.smooth_iterations ||
+                        c.edge_length != before.edge_length ||
+                        c.max_triangles != before.max_triangles || c.seed != before.seed;
 }
 
 void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
@@ -166,6 +187,19 @@ void coloring_section(ViewerState& s, PanelActions& a) {
     ImGui::EndCombo();
   }
   if (st.mode == ColorMode::kError) ImGui::Checkbox("viridis", &st.colors.error_viridis);
+  if (st.mode == ColorMode::kCurvature || st.mode == ColorMode::kLevel ||
+      st.mode == ColorMode::kIntensity) {
+    // Fixed ranges keep a video from flickering as the field's values move.
+    static constexpr const char* kRanges[] = {"each frame", "first frame", "whole run", "fixed"};
+    int range = static_cast<int>(st.colors.range);
+    if (ImGui::Combo("range", &range, kRanges, 4)) st.colors.range = static_cast<ColorRange>(range);
+    if (st.colors.range == ColorRange::kFixed) {
+      ImGui::InputDouble("min", &st.colors.range_min, 0.0, 0.0, "%.4g");
+      ImGui::InputDouble("max", &st.colors.range_max, 0.0, 0.0, "%.4g");
+      if (!(st.colors.range_max > st.colors.range_min))
+        st.colors.range_max = st.colors.range_min + 1e-6;
+    }
+  }
   if (st.mode == ColorMode::kIntensity) {
     ImGui::Checkbox("auto window", &st.colors.intensity_auto);
     if (!st.colors.intensity_auto) {
@@ -283,7 +317,7 @@ PanelActions draw_panel(ViewerState& state, const PanelInfo& info) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::PushItemWidth(150);
   scene_section(state, actions, info);
-  adaptation_section(state, actions);
+  adaptation_section(state, actions, info);
   playback_section(state, actions, info);
   coloring_section(state, actions);
   statistics_section(state, info);

@@ -5,7 +5,9 @@
 // static locals), so what is on screen can always be saved and reproduced.
 #pragma once
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include "app/render/camera.h"
 #include "app/render/render_style.h"
@@ -13,6 +15,15 @@
 #include "app/viewer/simulation.h"
 
 namespace dynamesh {
+
+// The adaptation settings whose meaning depends on a scene's units (mri is in millimetres,
+// the analytic scenes about one unit across): kept per scene, so each scene opens at the
+// settings last used with it, or at its suggestions the first time.
+struct SceneSettings {
+  double threshold = 0.008, epsilon = 0.002, density = 2000.0, edge_length = 0.0;
+
+  bool operator==(const SceneSettings&) const = default;
+};
 
 struct ViewerState {
   // The viewer opens on the sampled error: what the adaptation is about.
@@ -23,6 +34,8 @@ struct ViewerState {
   }
 
   SimulationControls controls;
+  // The settings of the scenes not on screen, by name (the one on screen: `controls`).
+  std::map<std::string, SceneSettings> scene_settings;
   // The formula panel's fields (scene expr) as typed; what runs is controls.scene_text.
   // Not saved: filled again from the saved scene_text at start (formula_draft.h).
   FormulaDraft formula;
@@ -44,8 +57,22 @@ struct ViewerState {
   std::string output_dir = ".";  // screenshots and recordings
   int record_fps = 30;
 
+  // --keyframes: the times playback visits in order, `steps` steps per segment, instead of
+  // t0 .. t1 (t0 and t1 are then the smallest and largest keyframe, for the time slider).
+  // `playhead` counts the steps taken along them. Not saved.
+  std::vector<double> keyframes;
+  int playhead = 0;
+
   double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
+  // Keyframes: the number of steps along all segments, and the time after `step` of them.
+  int keyframe_steps() const;
+  double keyframe_time(int step) const;
 };
+
+// Switches to `scene`: the current scene's settings go to scene_settings, the new scene's
+// come from there or, the first time, from its suggestions (T, density; eps = T/4; its own
+// edge length). Parameters and text options of the old scene are dropped.
+void switch_scene(ViewerState& state, const std::string& scene);
 
 // Where the viewer keeps its settings between runs: $XDG_CONFIG_HOME/dynamesh/viewer.conf,
 // else ~/.config/dynamesh/viewer.conf; empty when neither variable is set.
@@ -55,7 +82,9 @@ std::string settings_path();
 // std::runtime_error on failure.
 void save_viewer_state(const ViewerState& state, const std::string& path);
 // Reads a file written by save_viewer_state over `state`: unknown keys are ignored (older or
-// newer versions), malformed values are skipped. Returns false when the file cannot be read.
-bool load_viewer_state(ViewerState& state, const std::string& path);
+// newer versions), malformed values (numbers read as strictly as on the command line) are
+// skipped and their keys added to `rejected`. Returns false when the file cannot be read.
+bool load_viewer_state(ViewerState& state, const std::string& path,
+                       std::vector<std::string>* rejected = nullptr);
 
 }  // namespace dynamesh

@@ -1,6 +1,7 @@
 // Options of the adaptation (de Goes et al. 2006, Section 3; defaults from DESIGN.md).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 
@@ -24,14 +25,28 @@ struct AngleGuard {
   double max_deg = 160.0;
 };
 
+// Which faces a step measures: those whose error could have left the range where no decision
+// depends on it (error_predictor.h), or every face (the reference).
+enum class Sampling { kPredictive, kFull };
+
 struct AdaptOptions {
   double threshold = 0.008;  // T: target geometric error (scene units)
   double epsilon = 0.002;    // eps: hysteresis half-width; weld below T - eps, split above T + eps
   double density = 2000.0;   // D: samples per unit area (at least one per triangle)
   std::uint64_t seed = 1;    // sample jitter; runs with the same seed are identical
   std::size_t max_triangles = 2'000'000;  // refinement stops at this budget (reported)
+  // Budgets against hostile input (issue 15), reported like the triangle budget: refinement
+  // stops when the sample pool holds more than max_samples (12 bytes each; a face holds up to
+  // 256, so a huge density would otherwise fill memory long before max_triangles), or when
+  // the wall clock passes `deadline`.
+  std::size_t max_samples = 50'000'000;
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   bool structural = true;                 // split and weld
   bool geometric = true;                  // normal and tangential correction
+  Sampling sampling = Sampling::kPredictive;
+  // Watch F for merges, splits and pinches and rebuild the mesh when its topology no longer
+  // matches (surfaces that say they may change topology; core/topology/topology_events.h).
+  bool topology_events = true;
   SmoothingOptions smoothing;
   AngleGuard angle_guard;
   // Every frame embedded and well shaped, whatever the step size (DESIGN.md, "Quality bars"):

@@ -10,6 +10,7 @@
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/topology/topology_events.h"
 
 namespace dynamesh {
 namespace {
@@ -99,6 +100,8 @@ Adapter::Adapter(Surface& surface, const AdaptOptions& options, CriterionList cr
 Adapter::~Adapter() = default;
 
 void Adapter::set_options(const AdaptOptions& options, CriterionList criteria) {
+  // References recorded before full sampling took over may be stale.
+  if (options.sampling != options_.sampling) predictor_.invalidate();
   options_ = options;
   criteria_ = std::move(criteria);
   samples_.set_density(options.density);
@@ -110,6 +113,8 @@ const StepStats& Adapter::initialize() {
   // The tracker places new vertices before the samples are redistributed over them.
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
+  mesh_.add_listener(&predictor_);
+  predictor_.invalidate();
   step_ = 0;
   stats_ = StepStats{};
   stats_.time = surface_.time();
@@ -118,7 +123,9 @@ const StepStats& Adapter::initialize() {
   tracker_->grow(mesh_);
   samples_.reset(mesh_);
   stats_.seconds.project = clock.lap();
-  samples_.evaluate_all(mesh_, probe_);
+  if (options_.sampling == Sampling::kPredictive)
+    predictor_.begin_step(mesh_, probe_, start_positions_, step_);
+  measure(mesh_.live_faces());
   stats_.seconds.sample = clock.lap();
   if (options_.structural) {
     // Refine to the centre of the band (criteria.h, SplitQuery::initial), then let a weld and
@@ -130,6 +137,7 @@ const StepStats& Adapter::initialize() {
     split_pass(false);
     stats_.seconds.split += clock.lap();
   }
+  watch_topology();
   publish_repaired();
   finish_stats();
   return stats_;
@@ -175,11 +183,13 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   PhaseSeconds& seconds = stats_.seconds;
   if (options_.geometric && probe_.follows_material() && !rest_points_fresh) record_rest_points();
   surface_.set_time(t);
+  if (topology_) check_topology();
   const bool correct = options_.geometric && surface_changed();
   if (correct) normal_correction();
   seconds.project += clock.lap();
   if (correct) tangential_correction();
   if (correct) repair(options_.fold_repair);
+  if (correct && topology_) rebuild_if_folded();
   seconds.smooth += clock.lap();
   sampling();
   seconds.sample += clock.lap();
@@ -222,6 +232,18 @@ void Adapter::publish_repaired() {
   stats_.seconds.sample += clock.lap();
   if (options_.structural) split_pass(false);
   stats_.seconds.split += clock.lap();
+}
+
+void Adapter::rebuild_from_base() {
+  // As initialize() does, but within a step: every vertex is born now (none survives).
+  mesh_ = surface_.base_mesh();
+  mesh_.add_listener(tracker_.get());
+  mesh_.add_listener(&samples_);
+  tracker_->grow(mesh_);
+  for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
+  samples_.reset(mesh_);
+  samples_.evaluate_all(mesh_, probe_);
+  if (options_.structural) split_pass(true);
 }
 
 bool Adapter::surface_changed() {
@@ -273,11 +295,26 @@ void Adapter::tangential_correction() {
 
 void Adapter::sampling() {
   samples_.refresh_patterns(mesh_);
-  samples_.evaluate_all(mesh_, probe_);
+  if (options_.sampling == Sampling::kFull) {
+    measure(mesh_.live_faces());
+    stats_.faces_measured += mesh_.n_faces();
+    return;
+  }
+  predictor_.begin_step(mesh_, probe_, start_positions_, step_);
+  predictor_.select(
+      mesh_, probe_, samples_,
+      [&](Face f, double error) { return split_urgency(f, error, false) > 1.0; }, to_measure_);
+  measure(to_measure_);
+  stats_.faces_measured += to_measure_.size();
 }
 
-double Adapter::split_urgency(Face f, bool initial) const {
-  const SplitQuery q{mesh_, f, samples_.face_error(f), initial};
+void Adapter::measure(const std::vector<Face>& faces) {
+  samples_.evaluate_faces(mesh_, probe_, faces);
+  if (options_.sampling == Sampling::kPredictive) predictor_.record(mesh_, probe_, faces);
+}
+
+double Adapter::split_urgency(Face f, double error, bool initial) const {
+  const SplitQuery q{mesh_, f, error, initial};
   double urgency = 0.0;
   for (const auto& c : criteria_)
     if (c->applies_to(mesh_, f)) urgency = std::max(urgency, c->split_urgency(q));
@@ -291,11 +328,23 @@ double Adapter::weld_ceiling(const DiamondChange& plan, double current) const {
   return ceiling;
 }
 
-double Adapter::star_error(const DiamondChange& plan) const {
-  double e = 0.0;
+Adapter::ErrorRange Adapter::star_error_range(const DiamondChange& plan) const {
+  ErrorRange r{0.0, 0.0};
   for (int h = 0; h < plan.count; ++h)
-    for (Face f : plan.halves[h].children) e = std::max(e, samples_.face_error(f));
-  return e;
+    for (Face f : plan.halves[h].children) {
+      const double e = samples_.face_error(f), b = predictor_.bound(samples_, f);
+      r.lo = std::max(r.lo, e - b);
+      r.hi = std::max(r.hi, e + b);
+    }
+  return r;
+}
+
+void Adapter::measure_star(const DiamondChange& plan) {
+  std::vector<Face> skipped;
+  for (int h = 0; h < plan.count; ++h)
+    for (Face f : plan.halves[h].children)
+      if (predictor_.bound(samples_, f) > 0.0) skipped.push_back(f);
+  measure(skipped);
 }
 
 bool Adapter::weld_allowed(const DiamondChange& plan, double error, double current) const {
@@ -338,19 +387,44 @@ void Adapter::weld_pass() {
   const double guard_limit = options_.threshold + options_.epsilon;
   // The key of a weld candidate: its post-weld error, measured only as far as the criteria's
   // ceiling for the star's current error needs; NaN when the weld is not allowed.
-  auto weld_key = [&](const DiamondChange& plan) {
-    const double current = star_error(plan);
-    const double error = samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan, current));
-    if (weld_allowed(plan, error, current)) return pathological_star(plan) ? -1.0 - error : error;
+  // With predictive sampling the current error is known within a range (star_error_range);
+  // the criteria allow more welds the larger it is (criteria.h), so a decision that is the
+  // same at both ends is the decision; otherwise the candidate is `ambiguous` and decided
+  // again once its star is measured.
+  auto weld_key = [&](const DiamondChange& plan, bool& ambiguous) {
+    const ErrorRange current = star_error_range(plan);
+    const double error = samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan, current.hi));
+    const bool allowed = weld_allowed(plan, error, current.hi);
+    ambiguous = allowed && current.lo < current.hi && !weld_allowed(plan, error, current.lo);
+    if (ambiguous) return std::numeric_limits<double>::quiet_NaN();
+    if (allowed) return pathological_star(plan) ? -1.0 - error : error;
     if (error <= guard_limit && pathological_star(plan)) return -1.0 - error;
     return std::numeric_limits<double>::quiet_NaN();
   };
+  auto decided_key = [&](const DiamondChange& plan) {
+    bool ambiguous = false;
+    const double k = weld_key(plan, ambiguous);
+    if (!ambiguous) return k;
+    measure_star(plan);
+    return weld_key(plan, ambiguous);
+  };
   std::vector<double> key(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::uint8_t> ambiguous(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
-    key[static_cast<std::size_t>(i)] = weld_key(plan);
+    bool a = false;
+    key[static_cast<std::size_t>(i)] = weld_key(plan, a);
+    ambiguous[static_cast<std::size_t>(i)] = a;
+  }
+  // Few (predictive sampling only): measured one star at a time.
+  for (std::int64_t i = 0; i < n; ++i) {
+    DiamondChange plan;
+    if (!ambiguous[static_cast<std::size_t>(i)] ||
+        !mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan))
+      continue;
+    key[static_cast<std::size_t>(i)] = decided_key(plan);
   }
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
@@ -374,7 +448,7 @@ void Adapter::weld_pass() {
       const Vertex apex = plan.halves[h].parent_vertices[0];
       DiamondChange next;
       if (!mesh_.plan_weld(apex, next)) continue;
-      const double k = weld_key(next);
+      const double k = decided_key(next);
       if (!std::isnan(k)) queue.push(entry(k, apex.idx));
     }
   }
@@ -384,13 +458,13 @@ void Adapter::weld_pass() {
     if (mesh_.is_alive(f)) merged.push_back(f);
   std::sort(merged.begin(), merged.end());
   merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
-  samples_.evaluate_faces(mesh_, probe_, merged);
+  measure(merged);
 }
 
 void Adapter::split_pass(bool initial) {
   std::priority_queue<SplitEntry> queue;
   for (Face f : mesh_.live_faces()) {
-    const double u = split_urgency(f, initial);
+    const double u = split_urgency(f, samples_.face_error(f), initial);
     if (u > 1.0) queue.push({u, f.idx, tracker_->stamp[f.idx]});
   }
   const std::size_t created_before = tracker_->vertices_created;
@@ -403,6 +477,15 @@ void Adapter::split_pass(bool initial) {
       stats_.budget_hit = true;
       break;
     }
+    if (samples_.n_samples() > options_.max_samples) {
+      stats_.sample_budget_hit = true;
+      break;
+    }
+    // The clock is read every 64 splits (a split costs microseconds).
+    if ((++splits_since_clock_ & 63) == 0 && std::chrono::steady_clock::now() > options_.deadline) {
+      stats_.time_budget_hit = true;
+      break;
+    }
     if (split_refused(f)) {
       ++stats_.splits_refused;
       continue;
@@ -412,10 +495,10 @@ void Adapter::split_pass(bool initial) {
       ++stats_.splits_refused;  // at the mesh's depth limit
       continue;
     }
-    samples_.evaluate_faces(mesh_, probe_, tracker_->touched);
+    measure(tracker_->touched);
     for (Face t : tracker_->touched) {
       if (!mesh_.is_alive(t)) continue;
-      const double u = split_urgency(t, initial);
+      const double u = split_urgency(t, samples_.face_error(t), initial);
       if (u > 1.0) queue.push({u, t.idx, tracker_->stamp[t.idx]});
     }
   }

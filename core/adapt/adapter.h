@@ -19,6 +19,7 @@
 
 #include "core/adapt/adapt_options.h"
 #include "core/adapt/criteria.h"
+#include "core/adapt/error_predictor.h"
 #include "core/adapt/mesh_snapshot.h"
 #include "core/adapt/sample_store.h"
 #include "core/adapt/step_stats.h"
@@ -27,6 +28,8 @@
 #include "core/surface/surface.h"
 
 namespace dynamesh {
+
+class TopologyMonitor;
 
 // Per-vertex fields a snapshot can carry (each costs time; curvature the most).
 struct SnapshotFields {
@@ -57,6 +60,8 @@ class Adapter {
 
   const Mesh48& mesh() const { return mesh_; }
   const SampleStore& samples() const { return samples_; }
+  // Bounds of the faces predictive sampling did not measure this step.
+  const ErrorPredictor& predictor() const { return predictor_; }
   const Surface& surface() const { return surface_; }
   const StepStats& stats() const { return stats_; }
   MeshSnapshot snapshot(const SnapshotFields& fields = {}) const;
@@ -76,12 +81,24 @@ class Adapter {
   void normal_correction();
   void tangential_correction();
   void sampling();
+  // Measures the faces' samples (and, with predictive sampling, records what they were
+  // measured against).
+  void measure(const std::vector<Face>& faces);
   void weld_pass();
   void split_pass(bool initial);
-  double split_urgency(Face f, bool initial) const;
-  // `error`: the post-weld error; `current`: star_error(plan), the star's error now.
+  // Largest urgency of the applicable criteria if f's error were `error`.
+  double split_urgency(Face f, double error, bool initial) const;
+  // `error`: the post-weld error; `current`: the star's error now.
   bool weld_allowed(const DiamondChange& plan, double error, double current) const;
-  double star_error(const DiamondChange& plan) const;
+  // The range the star's current error lies in: exact unless some of its faces were not
+  // measured this step (predictive sampling), then widened by their bounds.
+  struct ErrorRange {
+    double lo, hi;
+  };
+  ErrorRange star_error_range(const DiamondChange& plan) const;
+  // Measures the star's faces that were skipped this step (their error only known within a
+  // bound), so that star_error_range becomes exact.
+  void measure_star(const DiamondChange& plan);
   // The largest post-weld error any applicable criterion could allow for a star whose error
   // is now `current` (pruning bound).
   double weld_ceiling(const DiamondChange& plan, double current) const;
@@ -90,6 +107,15 @@ class Adapter {
   bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
   void record_rest_points();
+  // Topology change (issue 16, topology_events.h): starts watching F when the surface may
+  // change topology; each step, reports F's events and rebuilds the mesh from F's contour when
+  // its topology no longer matches (a global re-base: no vertex survives it).
+  void watch_topology();
+  void check_topology();
+  // After the geometric correction and its fold repair: rebuilds when faces are still turned
+  // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
+  void rebuild_if_folded();
+  void rebuild_from_base();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 
@@ -99,10 +125,13 @@ class Adapter {
   CriterionList criteria_;
   Mesh48 mesh_;
   SampleStore samples_;
+  ErrorPredictor predictor_;
+  std::vector<Face> to_measure_;  // sampling()'s list, reused step to step
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
   std::uint64_t step_ = 0;
+  std::uint32_t splits_since_clock_ = 0;  // the deadline is checked every 64 splits
   double last_time_ = 0.0;
   std::vector<double> last_parameters_;
   // Positions at the start of the current step (temporal coherence); reused step to step.
@@ -113,6 +142,7 @@ class Adapter {
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
   std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
+  std::unique_ptr<TopologyMonitor> topology_;
 };
 
 }  // namespace dynamesh

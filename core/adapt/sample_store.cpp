@@ -37,7 +37,11 @@ void SampleStore::prefetch_face(const Mesh48& mesh, Face f) const {
   __builtin_prefetch(samples_.data() + face_start_[f.idx]);
 }
 
-SampleStore::SampleStore(double density, std::uint64_t seed) : density_(density), seed_(seed) {}
+SampleStore::SampleStore(double density, std::uint64_t seed) : density_(density), seed_(seed) {
+  // Keeps parallel.cpp, and with it the engine's OpenMP wait policy, in every program that
+  // measures samples (parallel.h).
+  static_cast<void>(engine_wait_policy());
+}
 
 void SampleStore::grow_faces(std::size_t capacity) {
   if (face_start_.size() >= capacity) return;
@@ -45,6 +49,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   face_count_.resize(capacity, 0);
   face_error_.resize(capacity, 0.0);
   face_dense_.resize(capacity, 0);
+  measured_.resize(capacity, 0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -86,6 +91,7 @@ std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
 // k(k-1)/2 inverted), k^2 >= the target, and one uniformly jittered sample is drawn per cell.
 void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count) {
   face_error_[f] = 0.0;
+  measured_[f] = 0;
   face_dense_[f] = min_count > 0;
   const std::uint32_t n = std::max(target_count(mesh, Face(f)), min_count);
   const auto k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
@@ -113,6 +119,7 @@ void SampleStore::reset(const Mesh48& mesh) {
   face_count_.assign(mesh.face_capacity(), 0);
   face_error_.assign(mesh.face_capacity(), 0.0);
   face_dense_.assign(mesh.face_capacity(), 0);
+  measured_.assign(mesh.face_capacity(), 0);
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
@@ -143,6 +150,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   }
   const QuadraticErrorModel::Result r = model.evaluate();
   face_error_[f.idx] = r.error;
+  measured_[f.idx] = 1;
   return r.resolved;
 }
 
@@ -279,6 +287,7 @@ void SampleStore::after_split(Mesh48& mesh, const DiamondChange& change) {
     face_count_[c1] = n - n0;
     for (std::uint32_t c : {c0, c1}) {
       face_error_[c] = 0.0;
+      measured_[c] = 0;
       if (face_count_[c] < kMinSamplesPerFace) draw_pattern(mesh, c);
     }
   }
@@ -316,6 +325,7 @@ void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
     face_start_[parent] = start;
     face_count_[parent] = n0 + n1;
     face_error_[parent] = 0.0;
+    measured_[parent] = 0;
     if (face_count_[parent] > 2 * target_count(mesh, half.parent)) draw_pattern(mesh, parent);
   }
 }

@@ -63,6 +63,12 @@ class SampleStore final : public MeshListener {
   // error and the maximum of the quadratic model fitted to its samples (error_model.h).
   double face_error(Face f) const { return face_error_[f.idx]; }
   std::uint32_t count(Face f) const { return face_count_[f.idx]; }
+  // False when the face's samples changed (split, weld, new pattern) since it was last
+  // measured: face_error is then 0, not a measurement.
+  bool measured(Face f) const { return f.idx < measured_.size() && measured_[f.idx]; }
+  // True when the face's pattern was densified because its samples did not fit the
+  // quadratic error model (evaluate_faces).
+  bool densified(Face f) const { return face_dense_[f.idx]; }
   // Rewrites the pool with every face's range in face order, dropping the ranges left
   // behind. Measuring does this by itself whenever those outweigh the live samples.
   void compact();
@@ -108,6 +114,7 @@ class SampleStore final : public MeshListener {
   std::vector<std::uint32_t> face_start_, face_count_;
   std::vector<double> face_error_;
   std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
+  std::vector<std::uint8_t> measured_;        // measured() per face
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
   std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
 };

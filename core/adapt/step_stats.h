@@ -3,6 +3,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
+
+#include "core/topology/topology_event.h"
 
 namespace dynamesh {
 
@@ -18,6 +21,10 @@ struct StepStats {
   std::size_t welds = 0;
   double max_error = 0.0, mean_error = 0.0;  // over all samples, after the step
   std::size_t samples = 0;
+  // Faces whose samples the sampling phase measured (all of them with full sampling; the
+  // rest kept their last error within a bound: predictive sampling, error_predictor.h),
+  // summed over the sub-steps.
+  std::size_t faces_measured = 0;
   std::size_t vertices_kept = 0;  // vertices alive before and after the step
   // Temporal coherence (DESIGN.md, "Quality bars"): vertices_kept over the vertices alive at
   // the start of the step (1 on a static surface; re-meshing would give 0), and how far the
@@ -38,6 +45,15 @@ struct StepStats {
   std::size_t folds_found = 0, slivers_found = 0, repair_moves = 0;
   std::size_t folds_left = 0, slivers_left = 0;
   bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
+  bool time_budget_hit = false;    // ... at AdaptOptions::deadline
+  // Topology (issue 16; surfaces that may change topology): events found from F during the
+  // step, whether the mesh was rebuilt from F's contour (no vertex survives a rebuild), and
+  // what watching cost (seconds; also counted in seconds.project).
+  std::vector<TopologyEvent> topology_events;
+  bool rebuilt = false;
+  std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
+  double topology_seconds = 0.0;
   PhaseSeconds seconds;
 };
 

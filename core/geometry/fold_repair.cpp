@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
 #include "core/parallel.h"
 
@@ -25,21 +26,10 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return smallest;
 }
 
-// Whether the triangle's smallest angle (the one opposite its shortest edge) is below the
-// angle whose cosine is `cos_limit`, without trigonometry: this runs on every face every step.
+// Whether the triangle's smallest angle is below the angle whose cosine is `cos_limit` (a
+// degenerate triangle is): this runs on every face every step.
 bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  Vec3 u, v;
-  if (lab <= lbc && lab <= lca) {
-    u = a - c, v = b - c;
-  } else if (lbc <= lca) {
-    u = b - a, v = c - a;
-  } else {
-    u = a - b, v = c - b;
-  }
-  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
-  return !(norms > 0) || u.dot(v) > cos_limit * norms;
+  return smallest_angle_cosine(a, b, c) > cos_limit;
 }
 
 // Folded against the surface: the face's normal points away from the surface normal at one

@@ -26,6 +26,11 @@ MeshQuality measure_quality(const Mesh48& mesh);
 // Aspect ratio R / (2 r) of one triangle; +infinity when degenerate.
 double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c);
 
+// Cosine of one triangle's smallest angle (the one opposite its shortest edge), 1 when
+// degenerate. Hot loops compare cosines instead of taking three atan2 per face: the angle is
+// decreasing in its cosine on [0, pi].
+double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c);
+
 // Smallest and largest interior angle of one triangle, in degrees.
 std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& c);
 

@@ -1,12 +1,14 @@
 #include "core/geometry/tangential_smoothing.h"
 
+#include <omp.h>
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
 
-#include "core/parallel.h"
+#include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
+#include "core/parallel.h"
 
 namespace dynamesh {
 namespace {
@@ -14,6 +16,13 @@ namespace {
 struct Frame {
   PrincipalCurvatures k;
   double l1 = 0, l2 = 0;  // curvature magnitudes as used by Equation 1
+};
+
+// One thread's partial sum of a vertex's one-ring (compute_ring_centroids).
+struct RingSum {
+  Vec3 sum{Vec3::Zero()};
+  double weight = 0.0;
+  std::uint8_t boundary = 0;
 };
 
 }  // namespace
@@ -24,10 +33,10 @@ struct SmoothingWorkspace::Buffers {
   std::vector<Vec3> position;
   std::vector<Vec2> uv;
   std::vector<std::uint8_t> moved;
-  std::vector<Vec3> centroid;          // of each vertex's one-ring
-  std::vector<double> ring_weight;     // the centroid's total weight while summing
-  std::vector<std::uint8_t> boundary;  // per vertex: on an open boundary
-  std::vector<std::uint8_t> bad;       // per face slot: fails the guards
+  std::vector<Vec3> centroid;                   // of each vertex's one-ring
+  std::vector<std::vector<RingSum>> ring_sums;  // per thread, while summing
+  std::vector<std::uint8_t> boundary;           // per vertex: on an open boundary
+  std::vector<std::uint8_t> bad;                // per face slot: fails the guards
   std::vector<Face> check, next_check;
 };
 
@@ -38,25 +47,6 @@ namespace {
 
 using Work = SmoothingWorkspace::Buffers;
 
-// Cosine of the triangle's smallest angle, the one opposite its shortest edge (1 for a
-// degenerate triangle). Comparing cosines avoids three atan2 per face: the angle is
-// decreasing in its cosine on [0, pi].
-double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  // The angle opposite the shortest edge lies between the two other edges.
-  Vec3 u, v;
-  if (lab <= lbc && lab <= lca) {
-    u = a - c, v = b - c;
-  } else if (lbc <= lca) {
-    u = b - a, v = c - a;
-  } else {
-    u = a - b, v = c - b;
-  }
-  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
-  return norms > 0 ? u.dot(v) / norms : 1.0;
-}
-
 // Centroids of every vertex's one-ring, and which vertices lie on the boundary, in one pass
 // over the faces that meets each edge once (from its lower-numbered halfedge): walking each
 // vertex's ring instead chases faces scattered through memory. Uniform weights are the
@@ -64,32 +54,52 @@ double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
 // ring a fixed point — with uniform weights a vertex at a level transition of the 4-8 mesh
 // is pulled towards the coarse side, fine regions lose resolution and are split again, and
 // the mesh grows cycle after cycle of a periodic deformation.
+// In parallel: each thread sums its share of the faces into its own accumulators (an edge
+// adds to both its ends, which other threads' edges share), then the sums are combined.
 void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
   const std::size_t nv = mesh.vertex_capacity();
-  w.centroid.assign(nv, Vec3::Zero());
-  w.ring_weight.assign(nv, 0.0);
-  w.boundary.assign(nv, 0);
-  const auto nf = static_cast<std::uint32_t>(mesh.face_capacity());
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    if (!mesh.is_alive(Face(f))) continue;
-    for (int e = 0; e < 3; ++e) {
-      const Halfedge h(Face(f), e);
-      const Halfedge twin = mesh.twin(h);
-      if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
-      const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-      if (!twin.is_valid()) w.boundary[a.idx] = w.boundary[b.idx] = 1;
-      const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
-      const double length = (pa - pb).norm();
-      const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
-      w.centroid[a.idx] += weight * pb;
-      w.ring_weight[a.idx] += weight;
-      w.centroid[b.idx] += weight * pa;
-      w.ring_weight[b.idx] += weight;
+  const auto nf = static_cast<std::int64_t>(mesh.face_capacity());
+  const int threads = nf > kParallelMin ? omp_get_max_threads() : 1;
+  w.ring_sums.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<RingSum>& sums = w.ring_sums[static_cast<std::size_t>(omp_get_thread_num())];
+    sums.assign(nv, RingSum{});
+#pragma omp for schedule(static)
+    for (std::int64_t f = 0; f < nf; ++f) {
+      if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
+      for (int e = 0; e < 3; ++e) {
+        const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
+        const Halfedge twin = mesh.twin(h);
+        if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
+        const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+        if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
+        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+        const double length = (pa - pb).norm();
+        const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+        sums[a.idx].sum += weight * pb;
+        sums[a.idx].weight += weight;
+        sums[b.idx].sum += weight * pa;
+        sums[b.idx].weight += weight;
+      }
     }
   }
-  for (std::size_t i = 0; i < nv; ++i)
-    w.centroid[i] = w.ring_weight[i] > 0 ? Vec3(w.centroid[i] / w.ring_weight[i])
-                                         : mesh.position(Vertex(static_cast<std::uint32_t>(i)));
+  w.centroid.resize(nv);
+  w.boundary.resize(nv);
+  const auto n = static_cast<std::int64_t>(nv);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    RingSum total = w.ring_sums[0][k];
+    for (std::size_t t = 1; t < w.ring_sums.size(); ++t) {
+      total.sum += w.ring_sums[t][k].sum;
+      total.weight += w.ring_sums[t][k].weight;
+      total.boundary |= w.ring_sums[t][k].boundary;
+    }
+    w.centroid[k] = total.weight > 0 ? Vec3(total.sum / total.weight)
+                                     : mesh.position(Vertex(static_cast<std::uint32_t>(i)));
+    w.boundary[k] = total.boundary;
+  }
 }
 
 PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v) {

@@ -8,7 +8,8 @@ const char* StatsCsvWriter::header() {
          "seconds_smooth,seconds_sample,seconds_weld,seconds_split,seconds_total,kept_fraction,"
          "survivor_displacement_mean,survivor_displacement_max,smoothing_moved,smoothing_reverted,"
          "splits_refused,pathological_welds,substeps,motion_strain,folds_found,slivers_found,"
-         "repair_moves,folds_left,slivers_left";
+         "repair_moves,folds_left,slivers_left,faces_measured,topology_events,rebuilt,seconds_"
+         "topology";
 }
 
 StatsCsvWriter::StatsCsvWriter(const std::string& path) : file_(path) {
@@ -27,7 +28,9 @@ void StatsCsvWriter::write(const StepStats& s, std::size_t total_splits, std::si
       << s.survivor_displacement_max << ',' << s.smoothing_moved << ',' << s.smoothing_reverted
       << ',' << s.splits_refused << ',' << s.pathological_welds << ',' << s.substeps << ','
       << s.motion_strain << ',' << s.folds_found << ',' << s.slivers_found << ',' << s.repair_moves
-      << ',' << s.folds_left << ',' << s.slivers_left << '\n';
+      << ',' << s.folds_left << ',' << s.slivers_left << ',' << s.faces_measured << ','
+      << s.topology_events.size() << ',' << (s.rebuilt ? 1 : 0) << ',' << s.topology_seconds
+      << '\n';
 }
 
 void StatsCsvWriter::close() {

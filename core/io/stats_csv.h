@@ -1,5 +1,6 @@
-// Per-step statistics as CSV, one row per step (the CLI's --stats). The file appears under
-// its name only when close() succeeds (AtomicFile).
+// Per-step statistics as CSV, one row per step (the CLI's --stats). A regular file appears
+// under its name only when close() succeeds; "-" (stdout), /dev/stdout and FIFOs get the rows
+// as they come (AtomicFile).
 #pragma once
 
 #include <memory>

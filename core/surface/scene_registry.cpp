@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/surface/expression/expr_scene.h"
+#include "core/surface/scenes/blobs_scene.h"
 #include "core/surface/scenes/capsule_bend_scene.h"
 #include "core/surface/scenes/sinc_scene.h"
 #include "core/surface/scenes/sphere_scene.h"
@@ -53,7 +54,8 @@ struct Catalogue {
   std::mutex mutex;
   std::vector<SceneRegistration> entries{builtin<SphereScene>(), builtin<CapsuleBendScene>(),
                                          builtin<SincScene>(),   builtin<TwistScene>(),
-                                         expr_registration(),    mri_scene_registration()};
+                                         expr_registration(),    mri_scene_registration(),
+                                         builtin<BlobsScene>()};
 };
 
 Catalogue& catalogue() {

@@ -128,6 +128,11 @@ class ImplicitSurface : public Surface {
   // the mesh must refine anew behind every moving feature). Without a map, vertices are
   // corrected along the normal only.
   virtual bool has_rest_map() const { return false; }
+
+  // True when F's zero set may merge, split or pinch over time and base_mesh() rebuilds a mesh
+  // of whatever topology F has at the current time (a contoured base mesh): the adapter then
+  // watches F's critical points each step and rebuilds the mesh at an event (issue 16).
+  virtual bool may_change_topology() const { return false; }
   virtual Vec3 to_rest(const Vec3& p) const { return p; }
   virtual Vec3 from_rest(const Vec3& q) const { return q; }
 };

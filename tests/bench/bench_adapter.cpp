@@ -2,8 +2,11 @@
 // cost of evaluating the surface once at every sample and every vertex, with the same
 // threads. Goal (issue 4): step / yardstick <= 1.5, and a 100 000-triangle step well under
 // 50 ms on the 2-core machine. Scenes twist and capsule-bend around t = 0.5, T = 1e-3.
+// Predictive sampling (issue 17): BM_Sampling compares the median step with predictive and
+// with full sampling on the same scene; goal: predictive <= 0.5x full.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/adapt/adapter.h"
@@ -17,13 +20,15 @@ struct Scene {
   std::unique_ptr<Adapter> adapter;
 };
 
-Scene adapted(const std::string& name, double threshold) {
+Scene adapted(const std::string& name, double threshold,
+              Sampling sampling = Sampling::kPredictive) {
   Scene s;
   s.surface = make_scene(name);
   s.surface->set_time(0.5);
   AdaptOptions o;
   o.threshold = threshold;
   o.epsilon = threshold / 4;
+  o.sampling = sampling;
   s.adapter = std::make_unique<Adapter>(*s.surface, o, default_criteria(name, 0.0, o, 0.0));
   s.adapter->initialize();
   return s;
@@ -89,6 +94,46 @@ void BM_Step(benchmark::State& state, const std::string& name, double threshold)
   state.counters["yardstick_ms"] = per(yard);
   state.counters["ratio"] = total / yard;
 }
+
+// Median step (and its sampling phase) with predictive or full sampling, t stepping by 1e-3
+// from 0.5 after 8 warm-up steps (predictive sampling needs a step to have references).
+void BM_Sampling(benchmark::State& state, const std::string& name, double threshold,
+                 Sampling sampling) {
+  Scene s = adapted(name, threshold, sampling);
+  double t = 0.5;
+  for (int i = 0; i < 8; ++i) s.adapter->step(t += 1e-3);
+  std::vector<double> step, sample;
+  double measured = 0, faces = 0;
+  for (auto _ : state) {
+    const StepStats& st = s.adapter->step(t += 1e-3);
+    step.push_back(st.seconds.total);
+    sample.push_back(st.seconds.sample);
+    measured += static_cast<double>(st.faces_measured);
+    faces += static_cast<double>(st.triangles);
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["triangles"] = static_cast<double>(s.adapter->mesh().n_faces());
+  state.counters["median_step_ms"] = 1e3 * median(step);
+  state.counters["median_sample_ms"] = 1e3 * median(sample);
+  state.counters["measured_share"] = measured / faces;
+}
+
+BENCHMARK_CAPTURE(BM_Sampling, twist_predictive, std::string("twist"), 1e-3, Sampling::kPredictive)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(40);
+BENCHMARK_CAPTURE(BM_Sampling, twist_full, std::string("twist"), 1e-3, Sampling::kFull)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(40);
+BENCHMARK_CAPTURE(BM_Sampling, capsule_predictive, std::string("capsule-bend"), 1e-3,
+                  Sampling::kPredictive)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(40);
+BENCHMARK_CAPTURE(BM_Sampling, capsule_full, std::string("capsule-bend"), 1e-3, Sampling::kFull)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(40);
 
 BENCHMARK_CAPTURE(BM_Step, twist_T1e - 3, std::string("twist"), 1e-3)
     ->Unit(benchmark::kMillisecond)

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -85,6 +86,7 @@ TEST(Cli, BadInputIsOneLineAndExitTwo) {
       "run --stats /nonexistent-dir/x.csv",
       "run --export /proc/forbidden",
       "run --scene sinc --color intensity",
+      "run --sampling sometimes",
       "frobnicate",
   };
   for (const char* c : cases) {
@@ -107,7 +109,8 @@ TEST(Cli, HelpTeaches) {
   const Result run_help = run_cli("run --help");
   EXPECT_EQ(run_help.status, 0);
   for (const char* option : {"--scene", "--param", "--threshold", "--epsilon", "--density",
-                             "--steps", "--stats", "--export-final", "--render", "--k"})
+                             "--steps", "--stats", "--export-final", "--render", "--k",
+                             "--sampling"})
     EXPECT_NE(run_help.out.find(option), std::string::npos) << option;
   const Result scenes = run_cli("scenes");
   EXPECT_EQ(scenes.status, 0);
@@ -185,6 +188,44 @@ TEST(Cli, GoodRunJsonMatchesCsvAndFiles) {
     EXPECT_EQ(be32(20), 240u);
   }
   EXPECT_FALSE(last_line.empty());
+  fs::remove_all(dir);
+}
+
+// --sampling: full measures every face every step; predictive (the default) measures far
+// fewer on a smooth animation, within the same error bound.
+TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
+  const fs::path dir = scratch();
+  auto measured_share = [&](const std::string& mode) {
+    const fs::path csv = dir / (mode + ".csv");
+    const Result r = run_cli("run --scene twist --threshold 0.004 --t0 0.3 --t1 0.34 --steps 8 " +
+                             (mode.empty() ? "" : "--sampling " + mode) + " --quiet --stats " +
+                             csv.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+    EXPECT_LE(json["max_sample_error"].get<double>(), 0.005 + 1e-12) << mode;  // T + eps
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    const auto names = split(line, ',');
+    const auto column = [&](const char* name) {
+      return std::find(names.begin(), names.end(), name) - names.begin();
+    };
+    // Each step measures the faces of the mesh the previous step left.
+    double measured = 0, faces = 0, previous = 0;
+    std::getline(in, line);  // step 0, the initial adaptation, measures everything
+    previous = std::stod(split(line, ',').at(column("triangles")));
+    while (std::getline(in, line)) {
+      const auto cells = split(line, ',');
+      measured += std::stod(cells.at(column("faces_measured")));
+      faces += previous;
+      previous = std::stod(cells.at(column("triangles")));
+    }
+    return measured / faces;
+  };
+  EXPECT_EQ(measured_share("full"), 1.0);
+  const double predictive = measured_share("predictive");
+  EXPECT_LT(predictive, 0.5);
+  EXPECT_EQ(measured_share(""), predictive);  // the default
   fs::remove_all(dir);
 }
 

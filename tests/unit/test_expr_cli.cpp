@@ -6,9 +6,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "cli_runner.h"
+#include "tests/support/mesh_validity.h"
 
 namespace dynamesh {
 namespace {
@@ -23,19 +27,6 @@ struct CliResult {
   std::string out, err;
 };
 
-// Single-quoted for the shell. (Built with append: GCC 12 warns falsely, -Wrestrict, on
-// "'" + s.)
-std::string quoted(const std::string& arg) {
-  std::string q(1, '\'');
-  for (char c : arg) {
-    if (c == '\'')
-      q.append("'\\''");
-    else
-      q.push_back(c);
-  }
-  q.push_back('\'');
-  return q;
-}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -49,10 +40,10 @@ CliResult run_cli(const std::vector<std::string>& args) {
       fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" / ("expr_cli_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::string command("cd ");
-  command.append(quoted(kSource)).append(" && ").append(quoted(kCli)).append(" run");
-  for (const std::string& a : args) command.append(" ").append(quoted(a));
-  command.append(" > ").append(quoted((dir / "out").string()));
-  command.append(" 2> ").append(quoted((dir / "err").string()));
+  command.append(test::shell_quoted(kSource)).append(" && ").append(test::shell_quoted(kCli)).append(" run");
+  for (const std::string& a : args) command.append(" ").append(test::shell_quoted(a));
+  command.append(" > ").append(test::shell_quoted((dir / "out").string()));
+  command.append(" 2> ").append(test::shell_quoted((dir / "err").string()));
   CliResult r;
   const int raw = std::system(command.c_str());
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -121,6 +112,104 @@ TEST(ExprCli, ExamplesRun) {
     EXPECT_NE(r.out.find("\"triangles\""), std::string::npos) << entry.path() << ": " << r.out;
   }
   EXPECT_GE(examples, 4);
+}
+
+// --- topology (issue 16) ----------------------------------------------------------------
+
+std::vector<std::string> example_args(const std::string& name) {
+  std::vector<std::string> args;
+  std::ifstream in(kSource + "/assets/examples/" + name);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) args.push_back(line);
+  return args;
+}
+
+// The JSON summary: the last line of stdout.
+nlohmann::json summary_of(const CliResult& r) {
+  const std::size_t end = r.out.find_last_not_of('\n');
+  const std::size_t start = r.out.rfind('\n', end);
+  return nlohmann::json::parse(r.out.substr(start == std::string::npos ? 0 : start + 1));
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" /
+                       ("topology_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+TEST(ExprCli, NonStarShapedFormulasNeedNoBaseMesh) {
+  // A torus and two spheres from formulas alone (these were refused before issue 16: "not
+  // star-shaped ... give --base-mesh"): closed embedded meshes of the right topology.
+  ASSERT_TRUE(fs::exists(kCli)) << kCli;
+  struct Case {
+    std::string formula, bounds;
+    long components, euler;
+  };
+  for (const Case& c : {Case{"(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09", "-1.5,-1.5,-0.5,1.5,1.5,0.5", 1, 0},
+                        Case{"((x-0.8)^2+y^2+z^2-0.25)*((x+0.8)^2+y^2+z^2-0.25)",
+                             "-1.5,-0.7,-0.7,1.5,0.7,0.7", 2, 4}}) {
+    const fs::path ply = scratch("shape.ply");
+    const CliResult r = run_cli({"--scene", "expr", "--implicit", c.formula, "--bounds", c.bounds,
+                                 "--steps", "0", "--quiet", "--export-final", ply.string()});
+    ASSERT_EQ(r.status, 0) << c.formula << ": " << r.err;
+    const test::MeshValidity v = test::check_mesh_validity_of_file(ply.string());
+    EXPECT_TRUE(v.embedded_closed_manifold()) << c.formula << ": " << v.describe();
+    EXPECT_EQ(v.components, c.components) << c.formula;
+    EXPECT_EQ(v.euler(), c.euler) << c.formula;
+  }
+}
+
+TEST(ExprCli, TorusPinchExampleReportsTheSplitAndEndsABentTube) {
+  ASSERT_TRUE(fs::exists(kCli)) << kCli;
+  std::vector<std::string> args = example_args("torus-pinch.args");
+  ASSERT_FALSE(args.empty());
+  const fs::path ply = scratch("pinched.ply");
+  args.insert(args.end(), {"--steps", "40", "--export-final", ply.string()});
+  const CliResult r = run_cli(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  // On stderr, one line per event and per rebuild; in the JSON, the event with its time.
+  EXPECT_NE(r.err.find("topology: split at t=0.5"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("topology: mesh rebuilt"), std::string::npos) << r.err;
+  const nlohmann::json json = summary_of(r);
+  ASSERT_EQ(json["topology_events"].size(), 1u) << r.out;
+  EXPECT_EQ(json["topology_events"][0]["kind"], "split");
+  EXPECT_NEAR(json["topology_events"][0]["time"].get<double>(), 0.5, 1.0 / 40);
+  EXPECT_NEAR(json["topology_events"][0]["position"][0].get<double>(), 1.0, 0.05);
+  EXPECT_EQ(json["rebuilds"], 1);
+  const test::MeshValidity v = test::check_mesh_validity_of_file(ply.string());
+  EXPECT_TRUE(v.embedded_closed_manifold()) << v.describe();
+  EXPECT_EQ(v.components, 1);
+  EXPECT_EQ(v.euler(), 2);  // a bent tube: a sphere
+}
+
+TEST(ExprCli, BlobsSceneMergesAndSeparates) {
+  ASSERT_TRUE(fs::exists(kCli)) << kCli;
+  const fs::path csv = scratch("blobs.csv");
+  const fs::path ply = scratch("blobs.ply");
+  const CliResult r = run_cli({"--scene", "blobs", "--steps", "40", "--stats", csv.string(),
+                               "--t1", "0.5", "--export-final", ply.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("topology: merge at t=0.15"), std::string::npos) << r.err;
+  const nlohmann::json json = summary_of(r);
+  ASSERT_EQ(json["topology_events"].size(), 1u) << r.out;
+  EXPECT_EQ(json["topology_events"][0]["kind"], "merge");
+  EXPECT_NEAR(json["topology_events"][0]["time"].get<double>(), 0.1515, 0.5 / 40);
+  const test::MeshValidity v = test::check_mesh_validity_of_file(ply.string());
+  EXPECT_EQ(v.components, 1);
+  EXPECT_EQ(v.euler(), 2);
+  // The CSV marks the step that rebuilt the mesh (t = 0.1625 .. 0.175 with 40 steps to 0.5).
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find("topology_events,rebuilt,seconds_topology"), std::string::npos);
+  int rebuilt_rows = 0;
+  while (std::getline(in, line)) {
+    const auto cut = line.rfind(',');
+    const auto before = line.rfind(',', cut - 1);
+    rebuilt_rows += line.substr(before + 1, cut - before - 1) == "1";
+  }
+  EXPECT_EQ(rebuilt_rows, 1);
 }
 
 }  // namespace

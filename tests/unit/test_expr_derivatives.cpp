@@ -187,26 +187,26 @@ TEST(ExprDerivatives, TravellingWaveMatchesClosedForm) {
   auto s =
       expr({{"height", "0.12*sin(2*pi*(1.5*x + z - 2*t))*exp(-x^2)"}, {"domain", "-1,1,-1,1"}});
   expect_parametric(*s, [](const Vec2& uv, double t) {
-    const double x = uv.x(), z = uv.y(), A = 0.12;
+    const double z = uv.x(), x = uv.y(), A = 0.12;  // (u, v) = (z, x): normal up
     const double phi = 2 * kPi * (1.5 * x + z - 2 * t), sp = std::sin(phi), cp = std::cos(phi);
     const double e = std::exp(-x * x), e1 = -2 * x * e, e2 = (4 * x * x - 2) * e;
     const double px = 3 * kPi, pz = 2 * kPi;
     ParametricDerivatives d;
     d.s = Vec3(x, A * e * sp, z);
-    d.su = Vec3(1, A * (e1 * sp + e * cp * px), 0);
-    d.sv = Vec3(0, A * e * cp * pz, 1);
-    d.suu = Vec3(0, A * (e2 * sp + 2 * e1 * cp * px - e * sp * px * px), 0);
+    d.su = Vec3(0, A * e * cp * pz, 1);
+    d.sv = Vec3(1, A * (e1 * sp + e * cp * px), 0);
+    d.suu = Vec3(0, -A * e * sp * pz * pz, 0);
     d.suv = Vec3(0, A * (e1 * cp * pz - e * sp * px * pz), 0);
-    d.svv = Vec3(0, -A * e * sp * pz * pz, 0);
+    d.svv = Vec3(0, A * (e2 * sp + 2 * e1 * cp * px - e * sp * px * px), 0);
     return d;
   });
 }
 
 TEST(ExprDerivatives, WobblingTubeMatchesClosedForm) {
-  // S = (cos u w, v, sin u w), w = 1 + a cos 3v, a = 0.3 sin 2 pi t.
+  // S = (sin u w, v, cos u w), w = 1 + a cos 3v, a = 0.3 sin 2 pi t: Su x Sv points outwards.
   auto s =
       expr({{"parametric",
-             "cos(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v)); v; sin(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))"},
+             "sin(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v)); v; cos(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))"},
             {"domain", "0,2*pi,-1,1"},
             {"periodic", "u"}});
   expect_parametric(*s, [](const Vec2& uv, double t) {
@@ -215,12 +215,12 @@ TEST(ExprDerivatives, WobblingTubeMatchesClosedForm) {
                  wvv = -9 * a * std::cos(3 * v);
     const double c = std::cos(u), sn = std::sin(u);
     ParametricDerivatives d;
-    d.s = Vec3(c * w, v, sn * w);
-    d.su = Vec3(-sn * w, 0, c * w);
-    d.sv = Vec3(c * wv, 1, sn * wv);
-    d.suu = Vec3(-c * w, 0, -sn * w);
-    d.suv = Vec3(-sn * wv, 0, c * wv);
-    d.svv = Vec3(c * wvv, 0, sn * wvv);
+    d.s = Vec3(sn * w, v, c * w);
+    d.su = Vec3(c * w, 0, -sn * w);
+    d.sv = Vec3(sn * wv, 1, c * wv);
+    d.suu = Vec3(-sn * w, 0, -c * w);
+    d.suv = Vec3(c * wv, 0, -sn * wv);
+    d.svv = Vec3(sn * wvv, 0, c * wvv);
     return d;
   });
 }

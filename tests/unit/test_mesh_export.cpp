@@ -1,5 +1,6 @@
 // Export tests: files written by dynamesh are read back by readers that share no code with
-// the writer (tinyobjloader for OBJ; a small PLY reader written here from the format spec).
+// the writer (tinyobjloader for OBJ; a small PLY reader written from the format spec,
+// ply_reader.h).
 #include <gtest/gtest.h>
 #include <tiny_obj_loader.h>
 
@@ -11,82 +12,14 @@
 #include "core/adapt/mesh_snapshot.h"
 #include "core/io/mesh_export.h"
 #include "core/mesh/base_meshes.h"
+#include "ply_reader.h"
 
 namespace dynamesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct PlyData {
-  std::vector<std::string> vertex_properties;
-  std::vector<std::vector<double>> vertices;  // one row of properties per vertex
-  std::vector<std::vector<std::uint32_t>> faces;
-};
-
-// Reads the subset of PLY that the writer claims to produce: float vertex properties and a
-// uchar/uint face list, ASCII or binary little-endian.
-PlyData read_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line, format;
-  std::size_t n_vertices = 0, n_faces = 0;
-  PlyData ply;
-  std::getline(in, line);
-  EXPECT_EQ(line, "ply");
-  std::string element;
-  while (std::getline(in, line) && line != "end_header") {
-    std::istringstream words(line);
-    std::string word;
-    words >> word;
-    if (word == "format") words >> format;
-    if (word == "element") {
-      words >> element;
-      (element == "vertex" ? n_vertices : n_faces) = std::stoul(line.substr(line.rfind(' ') + 1));
-    }
-    if (word == "property" && element == "vertex") {
-      std::string type, name;
-      words >> type >> name;
-      EXPECT_EQ(type, "float");
-      ply.vertex_properties.push_back(name);
-    }
-  }
-  const bool binary = format == "binary_little_endian";
-  const std::size_t k = ply.vertex_properties.size();
-  for (std::size_t v = 0; v < n_vertices; ++v) {
-    std::vector<double> row(k);
-    for (std::size_t i = 0; i < k; ++i) {
-      if (binary) {
-        float x;
-        in.read(reinterpret_cast<char*>(&x), 4);
-        row[i] = x;
-      } else {
-        in >> row[i];
-      }
-    }
-    ply.vertices.push_back(row);
-  }
-  for (std::size_t f = 0; f < n_faces; ++f) {
-    std::vector<std::uint32_t> face;
-    unsigned count = 0;
-    if (binary) {
-      unsigned char c;
-      in.read(reinterpret_cast<char*>(&c), 1);
-      count = c;
-    } else {
-      in >> count;
-    }
-    for (unsigned i = 0; i < count; ++i) {
-      std::uint32_t idx;
-      if (binary)
-        in.read(reinterpret_cast<char*>(&idx), 4);
-      else
-        in >> idx;
-      face.push_back(idx);
-    }
-    ply.faces.push_back(face);
-  }
-  EXPECT_TRUE(static_cast<bool>(in)) << "file ended early";
-  return ply;
-}
+using test::PlyData;
+using test::read_ply;
 
 MeshSnapshot sample_snapshot() {
   Mesh48 mesh = make_grid_mesh(3, 2, Vec2(-1, -1), Vec2(1, 1));

@@ -3,7 +3,10 @@
 // bad input. Files are written byte by byte by test_nifti_files.h.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -278,7 +281,153 @@ TEST(NiftiVolumeErrors, SingularTransform) {
 TEST(NiftiVolumeErrors, GzipFileThatIsNotGzip) {
   const auto path = scratch_dir("nifti_err_gz") / "x.nii.gz";
   test::write_text(path, std::string(2000, 'z'));
-  expect_error(path, "not a NIfTI-1 file");
+  expect_error(path, "not gzip-compressed");
+}
+
+}  // namespace
+}  // namespace dynamesh
+
+namespace dynamesh {
+namespace {
+
+// --- hostile headers (issue 15): refused with the reason, before anything is allocated ----
+
+TEST(NiftiVolumeHostile, AbsurdOrNonFiniteVoxelSizesAreRefused) {
+  const auto dir = scratch_dir("nifti_hostile_pixdim");
+  const auto values = pattern_values<std::uint8_t>();
+  int n = 0;
+  // pixdim alone (method 1), then the same pixdim through a qform (method 2).
+  for (const int qform : {0, 1}) {
+    for (const float size : {1e30f, 1e6f, 101.0f, 1e-5f, 0.005f}) {
+      for (const int axis : {1, 3}) {
+        nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
+        h.qform_code = static_cast<short>(qform);
+        h.pixdim[axis] = size;
+        const auto path = dir / (std::to_string(n++) + "_p.nii");
+        write_nifti(path, h, values);
+        expect_error(path, "is outside [0.01, 100] mm");
+      }
+    }
+    for (const float bad : {NAN, INFINITY}) {
+      nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
+      h.qform_code = static_cast<short>(qform);
+      h.pixdim[2] = bad;
+      const auto path = dir / (std::to_string(n++) + "_nf.nii");
+      write_nifti(path, h, values);
+      expect_error(path, "non-finite");
+    }
+  }
+  // Sizes at the ends of the range are read.
+  for (const float size : {0.01f, 100.0f}) {
+    nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
+    h.pixdim[1] = h.pixdim[2] = h.pixdim[3] = size;
+    const auto path = dir / (std::to_string(n++) + "_ok.nii");
+    write_nifti(path, h, values);
+    EXPECT_NEAR(read_nifti_volume(path).volume.grid.spacing()[0], size, 1e-6 * size);
+  }
+}
+
+TEST(NiftiVolumeHostile, AbsurdSformsAreRefused) {
+  const auto dir = scratch_dir("nifti_hostile_sform");
+  const auto values = pattern_values<std::uint8_t>();
+  auto expect_sform_error = [&](const std::string& name, const Mat3& linear, const Vec3& offset,
+                                const std::string& fragment) {
+    nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
+    test::set_sform(h, linear, offset);
+    write_nifti(dir / name, h, values);
+    expect_error(dir / name, fragment);
+  };
+  expect_sform_error("big.nii", 1e30 * Mat3::Identity(), Vec3::Zero(), "outside [0.01, 100]");
+  Mat3 one_row = Mat3::Identity();
+  one_row.row(0) *= 1e30;  // srow_x = 1e30
+  expect_sform_error("row.nii", one_row, Vec3::Zero(), "outside [0.01, 100]");
+  expect_sform_error("far.nii", Mat3::Identity(), Vec3(1e30, 0, 0), "mm from the origin");
+  expect_sform_error("inf.nii", Mat3::Identity(), Vec3(INFINITY, 0, 0), "non-finite");
+  // Two voxel axes 0.1 degrees apart: a flattened sliver, nearly singular.
+  Mat3 sliver = Mat3::Identity();
+  sliver.col(1) = Vec3(std::cos(0.1 * std::numbers::pi / 180), std::sin(0.1 * std::numbers::pi / 180), 0);
+  expect_sform_error("sliver.nii", sliver, Vec3::Zero(), "nearly so");
+  // A strong but honest shear (45 degrees) is still read.
+  Mat3 shear = Mat3::Identity();
+  shear(0, 1) = 1.0;
+  nifti_1_header h = make_header({kNx, kNy, kNz}, DT_UINT8, 8);
+  test::set_sform(h, shear, Vec3::Zero());
+  write_nifti(dir / "shear.nii", h, values);
+  EXPECT_EQ(read_nifti_volume(dir / "shear.nii").placement, VoxelPlacement::kSform);
+}
+
+TEST(NiftiVolumeHostile, HeaderClaimingMoreDataThanTheFileIsRefusedBeforeAllocating) {
+  const auto dir = scratch_dir("nifti_hostile_size");
+  // 1290^3 voxels in a 352-byte file: beyond what the reader ever reads.
+  nifti_1_header h = make_header({1290, 1290, 1290}, DT_UINT8, 8);
+  for (const char* name : {"huge.nii", "huge.nii.gz"}) {
+    write_nifti(dir / name, h, nullptr, 0);
+    expect_error(dir / name, "volume too large");
+  }
+  // 600^3 float64 (1.6 GB) and dim1 = 32767: within the voxel limit, so refused by the file
+  // size (plain) or as the data runs out (gzip). Must be quick and small: the reader grows
+  // its buffer only as data arrives (gzip) or checks the file size first (plain).
+  h = make_header({600, 600, 600}, DT_FLOAT64, 64);
+  nifti_1_header wide = make_header({32767, 100, 20}, DT_INT16, 16);
+  for (const char* name : {"big.nii", "big.nii.gz", "wide.nii", "wide.nii.gz"}) {
+    write_nifti(dir / name, name[0] == 'b' ? h : wide, nullptr, 0);
+    const auto start = std::chrono::steady_clock::now();
+    expect_error(dir / name, "truncated data");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  }
+}
+
+// Writes a valid file, returns its bytes.
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(NiftiVolumeHostile, DamagedGzipIsRefused) {
+  const auto dir = scratch_dir("nifti_hostile_gz");
+  const auto values = pattern_values<std::int16_t>();
+  write_nifti(dir / "good.nii.gz", make_header({kNx, kNy, kNz}, DT_INT16, 16), values);
+  const std::string good = file_bytes(dir / "good.nii.gz");
+  ASSERT_NO_THROW(read_nifti_volume(dir / "good.nii.gz"));
+  // The trailer is CRC-32 then the length, 4 bytes each, little-endian.
+  std::string crc = good;
+  crc[crc.size() - 8] ^= 0x55;
+  test::write_text(dir / "crc.nii.gz", crc);
+  expect_error(dir / "crc.nii.gz", "incorrect data check");
+  std::string length = good;
+  length[length.size() - 4] ^= 0x01;
+  test::write_text(dir / "len.nii.gz", length);
+  expect_error(dir / "len.nii.gz", "incorrect length check");
+  test::write_text(dir / "garbage.nii.gz", good + "trailing garbage");
+  expect_error(dir / "garbage.nii.gz", "trailing data");
+  test::write_text(dir / "cut.nii.gz", good.substr(0, good.size() - 6));
+  expect_error(dir / "cut.nii.gz", "ends early");
+  // Two concatenated members are valid gzip (the second one here is an empty stream's
+  // worth of extra voxels, so refused as trailing voxel data, not as garbage).
+  test::write_text(dir / "two.nii.gz", good + good);
+  expect_error(dir / "two.nii.gz", "bytes of trailing data after the last voxel");
+}
+
+TEST(NiftiVolumeHostile, DimensionsThatDoNotMatchTheDataAreRefused) {
+  const auto dir = scratch_dir("nifti_hostile_dims");
+  const auto values = pattern_values<std::int16_t>();
+  for (const char* name : {"small.nii", "small.nii.gz"}) {
+    // dim3 smaller than the data: the rest would be silently ignored.
+    write_nifti(dir / name, make_header({kNx, kNy, kNz - 1}, DT_INT16, 16), values);
+    expect_error(dir / name, "trailing data after the last voxel");
+  }
+  for (const char* name : {"4d.nii", "4d.nii.gz"}) {
+    // Three volumes claimed, one stored.
+    write_nifti(dir / name, make_header({kNx, kNy, kNz, 3}, DT_INT16, 16), values);
+    expect_error(dir / name, "describes 3 volumes, the file holds 1");
+  }
+  nifti_1_header h = make_header({kNx, kNy, kNz}, DT_INT16, 16);
+  h.vox_offset = 352.5f;
+  write_nifti(dir / "frac.nii", h, values);
+  expect_error(dir / "frac.nii", "invalid vox_offset");
+  h.vox_offset = 1e30f;
+  write_nifti(dir / "far.nii", h, values);
+  expect_error(dir / "far.nii", "invalid vox_offset");
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ TEST(SurfaceBaseMesh, SincIsAnOpenGridOverTheParameterSquare) {
       EXPECT_EQ(mesh.position(v), s.position(uv));
     }
     EXPECT_GT(min_angle_deg(mesh), 10.0) << "t=" << t;
-    // Faces turn like the surface's normal Su x Sv (towards -y).
+    // Faces turn like the surface's normal Su x Sv (towards +y).
     for (const test::Triple& tri : test::triangle_list(mesh)) {
       const Vec2 uv =
           (mesh.uv(Vertex(tri[0])) + mesh.uv(Vertex(tri[1])) + mesh.uv(Vertex(tri[2]))) / 3;

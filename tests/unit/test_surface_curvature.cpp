@@ -107,18 +107,23 @@ struct SincProfile {
   }
 };
 
-// For the height field y = f(r) with normal Su x Sv (pointing to -y), a surface of revolution:
-// radial curvature f'' / (1 + f'^2)^(3/2), circumferential f' / (r sqrt(1 + f'^2)), both
-// positive for a bowl f'' > 0, f' > 0 (it bends away from its downward normal).
+// The point (x, z) = r (cos phi, sin phi) of the sinc, whose (u, v) is (z, x) (sinc_scene.h).
+Vec2 sinc_uv(double r, double phi) {
+  return r * Vec2(std::sin(phi), std::cos(phi));
+}
+
+// For the height field y = f(r) with normal Su x Sv (pointing to +y), a surface of revolution:
+// radial curvature -f'' / (1 + f'^2)^(3/2), circumferential -f' / (r sqrt(1 + f'^2)), both
+// positive for a dome f'' < 0, f' < 0 (it bends away from its upward normal).
 void expect_sinc_curvatures(const SincScene& s, const SincProfile& f, double r, double phi,
                             double tol) {
   const double d1 = f.d1(r), d2 = f.d2(r);
-  const double k_radial = d2 / std::pow(1 + d1 * d1, 1.5);
-  const double k_circ = d1 / (r * std::sqrt(1 + d1 * d1));
-  const PrincipalCurvatures c = s.curvatures(r * Vec2(std::cos(phi), std::sin(phi)));
+  const double k_radial = -d2 / std::pow(1 + d1 * d1, 1.5);
+  const double k_circ = -d1 / (r * std::sqrt(1 + d1 * d1));
+  const PrincipalCurvatures c = s.curvatures(sinc_uv(r, phi));
   EXPECT_NEAR(c.k1, std::max(k_radial, k_circ), tol) << "r=" << r;
   EXPECT_NEAR(c.k2, std::min(k_radial, k_circ), tol) << "r=" << r;
-  const Vec3 normal = Vec3(d1 * std::cos(phi), -1, d1 * std::sin(phi)).normalized();
+  const Vec3 normal = Vec3(-d1 * std::cos(phi), 1, -d1 * std::sin(phi)).normalized();
   EXPECT_LE((c.normal - normal).norm(), 1e-12);
   if (std::abs(k_radial - k_circ) > 1e-3) {
     const Vec3 radial = Vec3(std::cos(phi), d1, std::sin(phi)).normalized();
@@ -154,25 +159,26 @@ TEST(SurfaceCurvature, SincRidgeHasZeroCircumferentialCurvature) {
   }
   const double ridge = 0.5 * (lo + hi);
   for (const double phi : {0.0, 1.0, 2.5, 4.0}) {
-    const PrincipalCurvatures c = s.curvatures(ridge * Vec2(std::cos(phi), std::sin(phi)));
-    // A trough of the (negative) ring: radial curvature f'' > 0, around the ring 0.
-    EXPECT_NEAR(c.k1, f.d2(ridge), 1e-8);
-    EXPECT_NEAR(c.k2, 0.0, 1e-8);
-    EXPECT_NEAR(std::abs(c.dir2.dot(Vec3(-std::sin(phi), 0, std::cos(phi)))), 1.0, 1e-9);
+    const PrincipalCurvatures c = s.curvatures(sinc_uv(ridge, phi));
+    // A trough of the (negative) ring: f'' > 0, so it bends towards the upward normal, radial
+    // curvature -f'' < 0; around the ring 0.
+    EXPECT_NEAR(c.k1, 0.0, 1e-8);
+    EXPECT_NEAR(c.k2, -f.d2(ridge), 1e-8);
+    EXPECT_NEAR(std::abs(c.dir1.dot(Vec3(-std::sin(phi), 0, std::cos(phi)))), 1.0, 1e-9);
   }
 }
 
 // With kappa = 0 the profile is smooth at the centre (f'(0) = 0) and both curvatures there are
-// f''(0) = alpha(t) beta^2 sinc''(0) = -alpha(t) beta^2 / 3.
+// -f''(0) = -alpha(t) beta^2 sinc''(0) = alpha(t) beta^2 / 3 (a dome under the upward normal).
 TEST(SurfaceCurvature, SincCentreWithoutDecayIsUmbilic) {
   SincScene s;
   s.set_parameter("kappa", 0.0);
   s.set_time(0.25);
   const PrincipalCurvatures c = s.curvatures(Vec2::Zero());
-  const double expected = -0.6 * std::pow(4 * kPi, 2) / 3;
+  const double expected = 0.6 * std::pow(4 * kPi, 2) / 3;
   EXPECT_NEAR(c.k1, expected, 1e-9);
   EXPECT_NEAR(c.k2, expected, 1e-9);
-  EXPECT_LE((c.normal - Vec3(0, -1, 0)).norm(), 1e-15);
+  EXPECT_LE((c.normal - Vec3::UnitY()).norm(), 1e-15);
 }
 
 TEST(SurfaceCurvature, TwistRestFaceIsFlat) {

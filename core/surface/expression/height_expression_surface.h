@@ -1,9 +1,10 @@
 // An open height field typed as a formula: y = f(x, z, t) over the domain [xmin, xmax] x
-// [zmin, zmax] (--height EXPR --domain ...), as a parametric surface with (u, v) = (x, z):
-// S(u, v) = (u, f(u, v, t), v), so the normal Su x Sv points to -y, as for the sinc scene, and
-// the grid base mesh (counter-clockwise in (u, v)) agrees with it. Positions and derivatives
-// come from the formula's tape with t fixed at the surface's time, on jets (exact); without a
-// tape (Expression::differentiable()), from muparser and central differences with steps
+// [zmin, zmax] (--height EXPR --domain ...), as a parametric surface with (u, v) = (z, x):
+// S(u, v) = (v, f(v, u, t), u), so the normal Su x Sv = (-f_x, 1, -f_z) points up (+y), as for
+// the sinc scene: the upper side is the front, and the grid base mesh (counter-clockwise in
+// (u, v)) agrees with it. domain() is [zmin, zmax] x [xmin, xmax] accordingly. Positions and
+// derivatives come from the formula's tape with t fixed at the surface's time, on jets (exact);
+// without a tape (Expression::differentiable()), from muparser and central differences with steps
 // relative to the domain. bounds() comes from a grid scan at each set_time(), which also
 // throws (before the time changes) where f is not finite.
 #pragma once

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "core/surface/expression/formula_checks.h"
 #include "core/surface/finite_differences.h"
 #include "core/surface/projection.h"
+#include "core/topology/contour_base_mesh.h"
 
 namespace dynamesh {
 
@@ -102,8 +104,20 @@ Mesh48 ImplicitExpressionSurface::base_mesh() const {
 }
 
 Mesh48 ImplicitExpressionSurface::build_base_mesh() const {
-  Mesh48 mesh = file_mesh_ ? file_base_mesh() : box_base_mesh();
-  check_orientation(mesh, file_mesh_ ? "base mesh " + base_mesh_path_ : "the box base mesh");
+  if (file_mesh_) {
+    Mesh48 mesh = file_base_mesh();
+    check_orientation(mesh, "base mesh " + base_mesh_path_);
+    return mesh;
+  }
+  // A star-shaped surface gets the box of quads (few, well-shaped base quads); any other
+  // (a torus, two blobs, a dumbbell bent round) is contoured from F itself (issue 16).
+  if (is_star_shaped()) {
+    Mesh48 mesh = box_base_mesh();
+    check_orientation(mesh, "the box base mesh");
+    return mesh;
+  }
+  Mesh48 mesh = make_contour_base_mesh(*this);
+  check_orientation(mesh, "the contoured base mesh");
   return mesh;
 }
 
@@ -141,7 +155,6 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
         "implicit formula '" + formula_ + "': the ray from the inside point " + format_point(c) +
         " towards " + format_point(q) + " never leaves the inside; enlarge --bounds");
   };
-  check_star_shaped(F);
   try {
     return make_projected_box_mesh(*this, bounds_, counts, place);
   } catch (const std::logic_error& e) {
@@ -153,15 +166,15 @@ Mesh48 ImplicitExpressionSurface::box_base_mesh() const {
   }
 }
 
-template <class Value>
-void ImplicitExpressionSurface::check_star_shaped(const Value& F) const {
+bool ImplicitExpressionSurface::is_star_shaped() const {
   // Placing the box by rays from the interior point is right only when every ray leaves the
   // inside once and for all (the surface is star-shaped around it, so of sphere topology).
   // Checked along kDirections rays spread evenly over the sphere (a Fibonacci lattice), each
-  // marched to the box in kMarch steps: a torus or a dumbbell bent around fails here rather
-  // than giving a base mesh that wraps the wrong shape.
+  // marched to the box in kMarch steps: a torus or a dumbbell bent around fails here and is
+  // contoured instead of getting a base mesh that wraps the wrong shape.
   constexpr int kDirections = 400, kMarch = 128;
   const Vec3 c = interior_;
+  const double t = time();
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kDirections; ++i) {
     const double z = 1.0 - 2.0 * (i + 0.5) / kDirections, r = std::sqrt(1.0 - z * z);
@@ -174,21 +187,46 @@ void ImplicitExpressionSurface::check_star_shaped(const Value& F) const {
     bool left = false;
     for (int k = 1; k <= kMarch; ++k) {
       const Vec3 p = c + (exit * k / kMarch) * d;
-      const bool inside = F(p) < 0;
+      const double x[4] = {p.x(), p.y(), p.z(), t};
+      const bool inside = f_.value(x) < 0;
       if (!inside) left = true;
-      if (inside && left)
-        throw std::invalid_argument(
-            "implicit formula '" + formula_ + "': a ray from the inside point " + format_point(c) +
-            " enters the surface again at " + format_point(p) +
-            ", so a box cannot be placed on it (not star-shaped, or not of sphere topology): "
-            "give a base mesh of its shape with --base-mesh FILE");
+      if (inside && left) return false;
     }
   }
+  return true;
 }
+
+namespace {
+
+// The surface F = 0 inside bounded --bounds is closed, so its base mesh must be closed too:
+// every edge shared by exactly two triangles. An open one would be adapted as a patch.
+void check_closed(const std::string& path, const std::vector<std::array<std::uint32_t, 3>>& tris) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::size_t open = 0;
+  std::pair<std::uint32_t, std::uint32_t> example;
+  for (const auto& [edge, n] : uses)
+    if (n != 2) {
+      if (open++ == 0) example = edge;
+    }
+  if (open > 0)
+    throw std::invalid_argument(
+        "base mesh " + path + ": " + std::to_string(open) +
+        " edges are not shared by exactly two triangles (e.g. vertices " +
+        std::to_string(example.first) + " and " + std::to_string(example.second) +
+        "): an implicit surface is closed, so its base mesh must be a closed manifold too");
+}
+
+}  // namespace
 
 Mesh48 ImplicitExpressionSurface::file_base_mesh() const {
   std::vector<Vec3> positions = file_mesh_->positions;
   std::vector<std::array<std::uint32_t, 3>> triangles = file_mesh_->triangles;
+  check_closed(base_mesh_path_, triangles);
   // OBJ and PLY writers disagree on winding: face the majority outwards (F grows outwards),
   // then let check_orientation() catch a mesh that is inconsistent.
   double outward = 0.0;
@@ -234,8 +272,8 @@ void ImplicitExpressionSurface::check_orientation(const Mesh48& mesh,
           source + " folds over when placed on the surface of '" + formula_ + "' near " +
           format_point(Vec3((a + b + c) / 3.0)) +
           (file_mesh_ ? "; give a finer base mesh closer to the surface"
-                      : "; the surface is not star-shaped around " + format_point(interior_) +
-                            " (or not of sphere topology): give --base-mesh FILE"));
+                      : "; give --base-mesh FILE, or tighter --bounds (the contour's grid spacing "
+                        "is a 24th of their longest side)"));
   }
 }
 

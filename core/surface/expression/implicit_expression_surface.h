@@ -1,7 +1,9 @@
 // A closed surface typed as a formula: {p : F(x, y, z, t) = 0} with F < 0 inside, inside a
-// user-given box (--implicit EXPR --bounds ...). The base mesh is either a box of quads placed
-// on the surface by rays from an interior point (sphere topology, for star-shaped surfaces) or
-// a user's mesh of the surface's topology (--base-mesh FILE, any genus) made 4-8 and projected.
+// user-given box (--implicit EXPR --bounds ...). The base mesh is a box of quads placed on the
+// surface by rays from an interior point when the surface is star-shaped around it; otherwise
+// F's zero set contoured on a coarse grid and paired into quads (any genus, any number of
+// components; core/topology/contour_base_mesh.h); or a user's mesh of the surface's topology
+// (--base-mesh FILE) made 4-8 and projected.
 // Values and derivatives come from the formula's tape with t fixed at the surface's time
 // (rebuilt at every set_time(), so that terms in t alone are computed once per frame), on
 // jets: exact gradients and Hessians. A formula without a tape (Expression::differentiable())
@@ -32,6 +34,8 @@ class ImplicitExpressionSurface final : public ImplicitSurface {
   void set_time(double t) override;
   Box3 bounds() const override { return bounds_; }
   Mesh48 base_mesh() const override;
+  // A typed formula may change topology unless the user's base mesh fixes it.
+  bool may_change_topology() const override { return !file_mesh_; }
 
   double value(const Vec3& p) const override;
   double value_gradient(const Vec3& p, Vec3& gradient) const override;
@@ -43,8 +47,7 @@ class ImplicitExpressionSurface final : public ImplicitSurface {
   Mesh48 build_base_mesh() const;
   Mesh48 box_base_mesh() const;
   Mesh48 file_base_mesh() const;
-  template <class Value>
-  void check_star_shaped(const Value& F) const;
+  bool is_star_shaped() const;
   void check_orientation(const Mesh48& mesh, const std::string& source) const;
 
   std::string formula_;

@@ -1,10 +1,9 @@
 #include "core/surface/expression/triangle_mesh_file.h"
 
-#include <tiny_obj_loader.h>
-
 #include <algorithm>
 #include <bit>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -35,30 +34,55 @@ void add_polygon(const std::string& path, TriangleMesh& mesh,
                               static_cast<std::uint32_t>(corners[k + 1])});
 }
 
+// One corner of an OBJ face, "i", "i/j", "i//k" or "i/j/k": the vertex index i, 1-based, or
+// negative counting back from the last vertex read so far.
+std::int64_t obj_corner(const std::string& path, std::size_t line_number, const std::string& word,
+                        std::size_t vertex_count) {
+  const std::string index = word.substr(0, word.find('/'));
+  long long i = 0;
+  const char* end = index.data() + index.size();
+  const auto [ptr, ec] = std::from_chars(index.data(), end, i);
+  if (ec != std::errc() || ptr != end || i == 0)
+    fail(path, "line " + std::to_string(line_number) + ": bad face corner '" + word + "'");
+  return i > 0 ? i - 1 : static_cast<std::int64_t>(vertex_count) + i;
+}
+
+// Wavefront OBJ, strictly: 'v' lines need three finite coordinates (a w or colour after them
+// is ignored), 'f' lines at least three corners; other statements (vt, vn, g, o, s, usemtl,
+// mtllib, l, ...) are ignored. A malformed or truncated line is an error naming its number.
 TriangleMesh read_obj(const std::string& path) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // fanned below, with index checks
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string error = reader.Error();
-    std::replace(error.begin(), error.end(), '\n', ' ');
-    fail(path, "not a readable OBJ file (" + error + ")");
-  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file");
   TriangleMesh mesh;
-  const auto& v = reader.GetAttrib().vertices;
-  for (std::size_t i = 0; i + 2 < v.size(); i += 3)
-    mesh.positions.emplace_back(v[i], v[i + 1], v[i + 2]);
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    std::size_t offset = 0;
-    for (unsigned char n : shape.mesh.num_face_vertices) {
-      std::vector<std::int64_t> corners;
-      for (std::size_t k = 0; k < n; ++k)
-        corners.push_back(shape.mesh.indices[offset + k].vertex_index);
-      offset += n;
+  std::string line;
+  std::vector<std::int64_t> corners;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "v") {
+      Vec3 p;
+      for (int a = 0; a < 3; ++a) {
+        std::string word;
+        words >> word;
+        double x = 0;
+        const char* end = word.data() + word.size();
+        const auto [ptr, ec] = std::from_chars(word.data(), end, x);
+        if (word.empty() || ec != std::errc() || ptr != end)
+          fail(path, "line " + std::to_string(number) + ": a vertex needs three numbers, got '" +
+                         line.substr(0, 80) + "'");
+        p[a] = x;
+      }
+      mesh.positions.push_back(p);
+    } else if (keyword == "f") {
+      corners.clear();
+      for (std::string word; words >> word;)
+        corners.push_back(obj_corner(path, number, word, mesh.positions.size()));
       add_polygon(path, mesh, corners, mesh.positions.size());
     }
   }
+  if (in.bad()) fail(path, "read error");
   return mesh;
 }
 
@@ -179,6 +203,26 @@ TriangleMesh read_ply(const std::string& path) {
     }
   }
   if (!format_seen) fail(path, "the header has no format line");
+  const std::uint64_t data_start = static_cast<std::uint64_t>(in.tellg());
+  std::error_code ec;
+  const std::uint64_t file_size = std::filesystem::file_size(path, ec);
+  std::uint64_t room = ec || file_size < data_start ? 0 : file_size - data_start;
+  // Each element's count is checked against the bytes left before anything is read: every
+  // item takes at least its fixed-size properties and list counts (binary) or two characters
+  // per value (ascii). A header claiming more is refused at once instead of read to the end.
+  for (const PlyElement& e : elements) {
+    if (e.properties.empty() && e.count > 0)
+      fail(path, "element '" + e.name + "' has " + std::to_string(e.count) +
+                     " items but no properties");
+    std::uint64_t item = 0;
+    for (const PlyProperty& p : e.properties)
+      item += format == PlyFormat::kAscii ? 2 : type_size(p.is_list ? p.count_type : p.type);
+    if (e.count > room / std::max<std::uint64_t>(item, 1))
+      fail(path, "element '" + e.name + "' claims " + std::to_string(e.count) +
+                     " items, more than the file's remaining " + std::to_string(room) +
+                     " bytes can hold (the data ends early)");
+    room -= e.count * item;
+  }
 
   TriangleMesh mesh;
   PlyValueReader reader(in, format, path);
@@ -215,7 +259,8 @@ TriangleMesh read_ply(const std::string& path) {
         corners.clear();
         for (int c = 0; c < static_cast<int>(n); ++c) {
           const double index = reader.read(prop.type);
-          if (index != std::floor(index)) fail(path, "a face index is not a whole number");
+          if (!(index == std::floor(index) && std::abs(index) < 4.3e9))
+            fail(path, "a face index is not a whole number of at most 32 bits");
           corners.push_back(static_cast<std::int64_t>(index));
         }
         if (static_cast<int>(k) == face_list)
@@ -225,6 +270,14 @@ TriangleMesh read_ply(const std::string& path) {
     }
     vertices_read = vertices_read || is_vertex;
   }
+  // What follows the last element must be nothing (binary) or white space (ascii): more data
+  // means the header's counts are smaller than the file's, and reading only as far as they
+  // say would silently give part of the mesh.
+  char c = 0;
+  while (in.get(c))
+    if (format != PlyFormat::kAscii || !std::isspace(static_cast<unsigned char>(c)))
+      fail(path, "data continues after the last element: the header's counts are smaller "
+                 "than the data");
   return mesh;
 }
 

@@ -1,8 +1,10 @@
 // Reading a triangle mesh from a file, for user-supplied base meshes (--base-mesh): Wavefront
-// OBJ through tinyobjloader, PLY through a small strict reader (ascii or binary little/big
-// endian; vertex x, y, z of any numeric type; faces as a list property "vertex_indices" or
-// "vertex_index"; other elements and properties are skipped). Polygons with more than three
-// corners are fanned into triangles.
+// OBJ (v and f statements) and PLY (ascii or binary little/big endian; vertex x, y, z of any
+// numeric type; faces as a list property "vertex_indices" or "vertex_index"; other elements
+// and properties are skipped), both by small strict readers: a malformed or truncated line,
+// a face with fewer than three corners, a PLY count larger than the file can hold or smaller
+// than its data is an error, never a partial mesh. Polygons with more than three corners are
+// fanned into triangles.
 #pragma once
 
 #include <array>

@@ -89,11 +89,12 @@ SincScene::Profile SincScene::profile(double r) const {
 Vec3 SincScene::position(const Vec2& uv) const {
   const double r = uv.norm();
   const double y = amplitude_ * sinc(params_.beta * r).value * std::exp(params_.kappa * r);
-  return {uv.x(), y, uv.y()};
+  return {uv.y(), y, uv.x()};  // (u, v) = (z, x): see sinc_scene.h
 }
 
 ParametricDerivatives SincScene::derivatives(const Vec2& uv) const {
-  // y(u, v) = f(|uv|): grad y = f' uv/r, Hess y = f'' n n^T + (f'/r)(I - n n^T), n = uv/r.
+  // y(u, v) = f(|uv|): grad y = f' uv/r, Hess y = f'' n n^T + (f'/r)(I - n n^T), n = uv/r,
+  // all in (u, v); S = (v, y, u) puts them on the y axis of Su = (0, y_u, 1), Sv = (1, y_v, 0).
   const double r = uv.norm();
   const Profile f = profile(r);
   Vec2 grad = Vec2::Zero();
@@ -105,9 +106,9 @@ ParametricDerivatives SincScene::derivatives(const Vec2& uv) const {
     hess = f.d2f * nn + (f.df / r) * (Mat2::Identity() - nn);
   }
   ParametricDerivatives d;
-  d.s = Vec3(uv.x(), f.f, uv.y());
-  d.su = Vec3(1.0, grad.x(), 0.0);
-  d.sv = Vec3(0.0, grad.y(), 1.0);
+  d.s = Vec3(uv.y(), f.f, uv.x());
+  d.su = Vec3(0.0, grad.x(), 1.0);
+  d.sv = Vec3(1.0, grad.y(), 0.0);
   d.suu = Vec3(0.0, hess(0, 0), 0.0);
   d.suv = Vec3(0.0, hess(0, 1), 0.0);
   d.svv = Vec3(0.0, hess(1, 1), 0.0);

@@ -1,7 +1,9 @@
 // Scene `sinc` (SCENES.md; de Goes et al. 2006, Section 4.2, Equation 2): the height field
 //   y = alpha(t) sinc(beta r) exp(kappa r),  r = sqrt(x^2 + z^2),  alpha(t) = alpha sin(2 pi t)
-// over the parameter square (u, v) = (x, z) in [-1, 1]^2: S(u, v) = (u, y(u, v), v), so the
-// normal Su x Sv points to -y. The mesh is open, its boundary on the square's boundary.
+// over the parameter square (u, v) = (z, x) in [-1, 1]^2: S(u, v) = (v, y, u). The axes are
+// taken in this order so that the normal Su x Sv = (-y_x, 1, -y_z) points up (+y): the upper
+// side of the open sheet is its front, and the grid base mesh (counter-clockwise in (u, v))
+// turns the same way. The mesh is open, its boundary on the square's boundary.
 //
 // Note: the profile's slope at r = 0 is alpha(t) kappa, not 0, so for alpha(t) kappa != 0 the
 // centre is the tip of a cone: the surface is not differentiable there. derivatives() returns

@@ -1,0 +1,119 @@
+// ErrorPredictor: which faces a step must measure (predictive sampling, issue 17).
+//
+// Measuring every sample every step costs at least one surface evaluation per sample, most of
+// a step. Yet on a smooth animation most faces' errors barely change between steps: what
+// changes a face's error is not how far it moves but how the surface bends under it
+// differently than before. The predictor keeps, per face, what that bending was when the
+// face was last measured, and re-measures only faces whose error could since have left the
+// range in which no decision depends on it.
+//
+// The bound. Over a triangle with vertices p_i on the surface, the residual (implicit: the
+// signed distance of the flat triangle's point; parametric: x(b) - S(uv(b))) is to second
+// order r(b) = sum_{i<j} c_ij b_i b_j (error_model.h), with one coefficient per edge:
+//   implicit   c_ij = -1/2 (p_j - p_i) . (n_j - n_i)        (n: unit normals at the vertices)
+//   parametric c_ij = +1/2 (J_j - J_i) (uv_j - uv_i)         (J = [S_u S_v] at the vertices)
+// i.e. half the surface's second derivative along the edge, averaged over the edge, which the
+// vertices' first-order data give exactly for a quadratic surface. Between the face's last
+// measurement and now, the error can therefore have changed by at most
+//   max_b |sum dc_ij b_i b_j| <= min(max |dc_ij| / 3, sum |dc_ij| / 4),
+// dc_ij the change of c_ij. This covers every cause the step knows of — the vertices' normal
+// correction and tangential moves (through p and uv), the surface's own motion (through the
+// normals and Jacobians at the vertices' new places), and how that motion varies across the
+// face (a rigid motion of a face with its surface leaves every c_ij unchanged, however fast).
+//
+// Assumptions, and what guards them:
+//   - The residual is quadratic over the triangle (the error model's own assumption). Faces
+//     where the model did not fit their samples (SampleStore::densified) are always measured,
+//     and the bound is multiplied by a safety factor (kSafety, error_predictor.cpp) for the
+//     cubic and higher terms it leaves out and for how the sampled estimate (a least-squares
+//     fit, error_model.h) responds to them.
+//   - The vertices lie on the surface (normal correction). Where a projection left a vertex
+//     off it, that vertex's distance to the surface is added to the bound (the residual is
+//     then no longer zero there; it moves the face's error by at most that much).
+//   - The step is small against the triangle: a face with a vertex that moved more than
+//     kMaxMoveFraction of its shortest edge this step is measured (a sudden jump in time).
+//   - Stochastic sampling and drift beyond all of the above: a rotating 1/kRotation of all
+//     faces is measured every step, so no face goes unmeasured for more than kRotation steps.
+// Faces whose samples changed (split, weld, new pattern: SampleStore::measured() false) are
+// always measured.
+//
+// A face is then skipped only when no criterion could ask to split it at its last error plus
+// the bound (split_urgency is non-decreasing in the error). Weld decisions measure the
+// post-weld error themselves; where a star's current error (the "no gain" rule,
+// criteria.h) could decide differently anywhere inside its faces' bounds, the adapter
+// measures those faces first (star_bounds). Split and weld decisions are therefore those of
+// full sampling as long as the assumptions hold.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/adapt/sample_store.h"
+#include "core/adapt/surface_probe.h"
+#include "core/mesh/mesh48.h"
+
+namespace dynamesh {
+
+class ErrorPredictor final : public MeshListener {
+ public:
+  static constexpr double kMaxMoveFraction = 0.25;
+  static constexpr std::uint32_t kRotation = 16;
+
+  // Forgets every face's reference (e.g. when switching from full sampling).
+  void invalidate();
+
+  // Start of a step's sampling, after the geometric correction: the vertices' first-order
+  // data at their new places. `start_positions` are the positions at the start of the step.
+  void begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
+                  const std::vector<Vec3>& start_positions, std::uint64_t step);
+
+  // The faces to measure this step. `would_split(f, error)`: whether some criterion would
+  // split f at that error. Stores every skipped face's bound (bound()).
+  void select(const Mesh48& mesh, const SurfaceProbe& probe, const SampleStore& samples,
+              const std::function<bool(Face, double)>& would_split, std::vector<Face>& measure);
+
+  // After faces were measured: records their reference coefficients (their bound is 0).
+  void record(const Mesh48& mesh, const SurfaceProbe& probe, const std::vector<Face>& faces);
+
+  // How far the face's true error may be from SampleStore::face_error this step: 0 for a face
+  // measured this step (or whose samples changed since, which face_error reports as 0, as
+  // with full sampling).
+  double bound(const SampleStore& samples, Face f) const {
+    return f.idx < bound_.size() && samples.measured(f) ? bound_[f.idx] : 0.0;
+  }
+
+  std::size_t skipped() const { return skipped_; }
+
+  // A split-born vertex (its id may be one a weld freed this step) has no frame yet.
+  void after_split(Mesh48& mesh, const DiamondChange& change) override;
+  void after_weld(Mesh48&, const DiamondChange&) override {}
+
+ private:
+  // First-order data of a vertex: implicit: the unit normal (a); parametric: S_u (a), S_v (b).
+  // `offset`: the vertex's distance to the surface (implicit, first order; 0 parametric).
+  struct VertexFrame {
+    Vec3 a{Vec3::Zero()}, b{Vec3::Zero()};
+    double offset = 0.0;
+  };
+  struct Coefficients {
+    float c[3][3];  // per edge (opposite vertex i), the coefficient vector (implicit: c[i][0])
+  };
+
+  void grow(const Mesh48& mesh);
+  void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v);
+  Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
+  bool moved_too_far(const Mesh48& mesh, Face f) const;
+
+  std::uint64_t step_ = 0;
+  std::vector<VertexFrame> frame_;
+  std::vector<std::uint64_t> frame_step_;  // step each frame was computed at (+1; 0 = never)
+  std::vector<float> moved_;               // each vertex's displacement this step
+  std::vector<Coefficients> reference_;
+  std::vector<std::uint8_t> has_reference_;
+  std::vector<double> bound_;
+  std::vector<std::uint8_t> flags_;  // select's scratch
+  std::size_t skipped_ = 0;
+};
+
+}  // namespace dynamesh

@@ -1,0 +1,26 @@
+#include "core/io/number_text.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace dynamesh {
+
+std::optional<double> parse_finite_number(const std::string& text) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value)) return {};
+  return value;
+}
+
+std::optional<long long> parse_whole_number(const std::string& text, long long min,
+                                            long long max) {
+  const std::optional<double> value = parse_finite_number(text);
+  // Beyond 2^53 doubles skip whole numbers; no option needs that much.
+  if (!value || *value != std::floor(*value) || std::abs(*value) > 9e15) return {};
+  const auto n = static_cast<long long>(*value);
+  if (n < min || n > max) return {};
+  return n;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,142 @@
+#include "core/topology/topology_events.h"
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+namespace dynamesh {
+
+namespace {
+
+// Union-find over vertex ids.
+struct Components {
+  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  }
+  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+  std::vector<std::uint32_t> parent;
+};
+
+// Morse theory: passing a critical point of index i with F decreasing through 0 attaches an
+// i-handle to the inside {F < 0}; increasing, removes one.
+TopologyEventKind kind_of(int index, bool going_negative) {
+  switch (index) {
+    case 0:
+      return going_negative ? TopologyEventKind::kBirth : TopologyEventKind::kDeath;
+    case 1:
+      return going_negative ? TopologyEventKind::kMerge : TopologyEventKind::kSplit;
+    case 2:
+      return going_negative ? TopologyEventKind::kHoleCloses : TopologyEventKind::kHoleOpens;
+    default:  // a maximum: a bubble of outside inside the solid vanishes or appears
+      return going_negative ? TopologyEventKind::kDeath : TopologyEventKind::kBirth;
+  }
+}
+
+}  // namespace
+
+const char* to_string(TopologyEventKind kind) {  // declared in topology_event.h
+  switch (kind) {
+    case TopologyEventKind::kBirth:
+      return "birth";
+    case TopologyEventKind::kDeath:
+      return "death";
+    case TopologyEventKind::kMerge:
+      return "merge";
+    case TopologyEventKind::kSplit:
+      return "split";
+    case TopologyEventKind::kHoleCloses:
+      return "hole-closes";
+    case TopologyEventKind::kHoleOpens:
+      return "hole-opens";
+    case TopologyEventKind::kMismatch:
+      return "mismatch";
+  }
+  return "?";
+}
+
+MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                       std::size_t vertex_count) {
+  Components c(vertex_count);
+  std::vector<char> used(vertex_count, 0);
+  for (const auto& t : triangles) {
+    for (const std::uint32_t v : t) used[v] = 1;
+    c.join(t[0], t[1]);
+    c.join(t[1], t[2]);
+  }
+  MeshTopologySummary s;
+  long vertices = 0;
+  for (std::uint32_t v = 0; v < vertex_count; ++v) {
+    if (!used[v]) continue;
+    ++vertices;
+    s.components += c.find(v) == v;
+  }
+  // Closed: every edge is shared by two triangles.
+  const auto faces = static_cast<long>(triangles.size());
+  s.euler = vertices - 3 * faces / 2 + faces;
+  return s;
+}
+
+MeshTopologySummary summarize_topology(const Mesh48& mesh) {
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  triangles.reserve(mesh.n_faces());
+  for (const Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    triangles.push_back({v[0].idx, v[1].idx, v[2].idx});
+  }
+  return summarize_topology(triangles, mesh.vertex_capacity());
+}
+
+TopologyMonitor::TopologyMonitor(const ContourBaseOptions& grid) : grid_options_(grid) {}
+
+ContourGrid TopologyMonitor::grid_for(const ImplicitSurface& surface) const {
+  const Box3 box = surface.bounds();
+  const double spacing =
+      grid_options_.spacing > 0
+          ? grid_options_.spacing
+          : box.size().maxCoeff() / std::max(2, grid_options_.cells_along_longest);
+  return make_contour_grid(box, spacing);
+}
+
+void TopologyMonitor::reset(const ImplicitSurface& surface, const Mesh48& mesh) {
+  const ContourGrid grid = grid_for(surface);
+  previous_ = find_critical_points(surface, grid, sample_field(surface, grid), HUGE_VAL);
+  previous_time_ = surface.time();
+  mesh_topology_ = summarize_topology(mesh);
+}
+
+TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
+  const auto start = std::chrono::steady_clock::now();
+  TopologyCheck out;
+  const ContourGrid grid = grid_for(surface);
+  const GridField field = sample_field(surface, grid);
+  std::vector<CriticalPoint> now = find_critical_points(surface, grid, field, HUGE_VAL);
+  const double t0 = previous_time_, t1 = surface.time();
+  const double reach = 2.0 * grid.spacing().maxCoeff();
+  for (const CriticalPoint& cp : now) {
+    const CriticalPoint* match = nullptr;
+    for (const CriticalPoint& old : previous_) {
+      if (old.index != cp.index) continue;
+      const double d = (old.position - cp.position).norm();
+      if (d < reach && (!match || d < (match->position - cp.position).norm())) match = &old;
+    }
+    if (!match || (match->value < 0) == (cp.value < 0)) continue;
+    const double s = match->value / (match->value - cp.value);
+    out.events.push_back({t0 + s * (t1 - t0), (1 - s) * match->position + s * cp.position,
+                          kind_of(cp.index, cp.value < 0)});
+  }
+  previous_ = std::move(now);
+  previous_time_ = t1;
+
+  // Safety net: the contour of the same grid against the mesh.
+  const ContourMesh contour = marching_tetrahedra(grid, field.values);
+  out.contour = summarize_topology(contour.triangles, contour.positions.size());
+  out.rebase = !(out.contour == mesh_topology_);
+  if (out.rebase && out.events.empty())
+    out.events.push_back({t1, grid.box.center(), TopologyEventKind::kMismatch});
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace dynamesh

@@ -1,0 +1,66 @@
+// Topology events of a deforming implicit surface, found from F (issue 16, event detection),
+// and the decision to rebuild the mesh.
+//
+// Every step the monitor samples F and grad F on a coarse grid over the surface's bounds:
+//  - F's critical points (critical_points.h) are matched to those of the previous step (same
+//    Morse index, nearest); one whose value changed sign is an event, at the time where the
+//    value crosses zero by linear interpolation over the step, of a kind given by its index
+//    and the direction of the crossing (a saddle of index 1 going negative joins two parts of
+//    the inside: a merge; going positive, a pinch or split; and so on);
+//  - a safety net contours the same grid (marching tetrahedra) and compares its Euler
+//    characteristic and number of components with the mesh's: a mismatch the critical points
+//    did not explain is reported as an event of kind "mismatch" at the current time, placed at
+//    the centre of the bounds (the net does not locate it).
+// Either way the mesh is rebuilt (`rebase`) only when the contour's topology differs from the
+// mesh's, since the rebuilt mesh is that contour, refined.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/mesh/mesh48.h"
+#include "core/surface/surface.h"
+#include "core/topology/contour_base_mesh.h"
+#include "core/topology/critical_points.h"
+#include "core/topology/topology_event.h"
+
+namespace dynamesh {
+
+// Euler characteristic and number of connected components of a closed mesh.
+struct MeshTopologySummary {
+  long euler = 0;
+  long components = 0;
+  bool operator==(const MeshTopologySummary&) const = default;
+};
+MeshTopologySummary summarize_topology(const Mesh48& mesh);
+MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                       std::size_t vertex_count);
+
+struct TopologyCheck {
+  std::vector<TopologyEvent> events;
+  bool rebase = false;          // the contour's topology differs from the mesh's
+  MeshTopologySummary contour;  // of F's zero set on the grid, now
+  double seconds = 0.0;         // what the check cost
+};
+
+class TopologyMonitor {
+ public:
+  explicit TopologyMonitor(const ContourBaseOptions& grid = {});
+
+  // The mesh was (re)built for the surface at its current time.
+  void reset(const ImplicitSurface& surface, const Mesh48& mesh);
+  // The surface has moved on to its current time since the last reset() or check().
+  TopologyCheck check(const ImplicitSurface& surface);
+  // The mesh was rebuilt after a check() (its critical points are already current).
+  void mesh_rebuilt(const Mesh48& mesh) { mesh_topology_ = summarize_topology(mesh); }
+
+ private:
+  ContourGrid grid_for(const ImplicitSurface& surface) const;
+
+  ContourBaseOptions grid_options_;
+  std::vector<CriticalPoint> previous_;
+  double previous_time_ = 0.0;
+  MeshTopologySummary mesh_topology_;
+};
+
+}  // namespace dynamesh

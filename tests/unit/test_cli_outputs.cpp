@@ -1,0 +1,192 @@
+// What dynamesh-cli leaves on disk (issue 12): `--stats -` and /dev/stdout are written in
+// place (the device node stays), a FIFO stays a FIFO, a run whose formula turns bad part way
+// removes every file it wrote, Ctrl-C / SIGTERM leaves no partial file, and --export writes
+// a ParaView collection naming its frames with their times.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <thread>
+
+#include "cli_runner.h"
+
+namespace dynamesh {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliRun;
+using test::run_cli;
+
+int count_lines_starting(const std::string& text, const std::string& prefix) {
+  int n = 0;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    if (text.compare(at, prefix.size(), prefix) == 0) ++n;
+    at = text.find('\n', at);
+    if (at == std::string::npos) break;
+    ++at;
+  }
+  return n;
+}
+
+std::vector<fs::path> files_in(const fs::path& dir) {
+  std::vector<fs::path> found;
+  if (fs::exists(dir))
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      if (!e.is_directory()) found.push_back(e.path());
+  return found;
+}
+
+TEST(CliOutputs, StatsDashWritesTheCsvToStdout) {
+  const CliRun r = run_cli({"--scene", "sinc", "--steps", "3", "--quiet", "--stats", "-"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("step,time,triangles", 0), 0u) << r.out;
+  EXPECT_EQ(count_lines_starting(r.out, "step,"), 1);
+  // Rows 0..3, then the JSON summary as the last line.
+  for (const char* row : {"0,", "1,", "2,", "3,"}) EXPECT_EQ(count_lines_starting(r.out, row), 1);
+  EXPECT_EQ(r.json["steps"].get<int>(), 3);
+  EXPECT_FALSE(fs::exists("-"));
+}
+
+TEST(CliOutputs, DevStdoutStaysWhatItIs) {
+  const auto before = fs::symlink_status("/dev/stdout").type();
+  ASSERT_TRUE(before == fs::file_type::symlink || before == fs::file_type::character);
+  const CliRun r =
+      run_cli({"--scene", "sinc", "--steps", "2", "--quiet", "--stats", "/dev/stdout"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(fs::symlink_status("/dev/stdout").type(), before);
+  EXPECT_FALSE(fs::exists("/dev/stdout.partial"));
+  // The CSV went through the shell's redirection of stdout, before the JSON line.
+  EXPECT_EQ(r.out.rfind("step,time,triangles", 0), 0u) << r.out;
+  EXPECT_EQ(count_lines_starting(r.out, "2,"), 1) << r.out;
+  EXPECT_FALSE(r.json.is_null());
+}
+
+TEST(CliOutputs, FifoStaysAFifoAndRegularFilesAreAtomic) {
+  const fs::path dir = test::cli_scratch("fifo");
+  const fs::path fifo = dir / "stats.fifo", copy = dir / "copy.csv";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // A reader on the other end, as a user's `tail -f` or pipeline would be.
+  std::thread reader([&] {
+    // (timeout: a run that failed before opening the FIFO must not hang the test)
+    std::system(("timeout 120 cat " + test::shell_quoted(fifo.string()) + " > " +
+                 test::shell_quoted(copy.string()))
+                    .c_str());
+  });
+  const CliRun r =
+      run_cli({"--scene", "sinc", "--steps", "2", "--quiet", "--stats", fifo.string()});
+  reader.join();
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_EQ(test::slurp_file(copy).rfind("step,time,triangles", 0), 0u);
+  // A regular file: complete under its name, nothing beside it.
+  const fs::path csv = dir / "stats.csv";
+  ASSERT_EQ(run_cli({"--scene", "sinc", "--steps", "2", "--quiet", "--stats", csv.string()}).status,
+            0);
+  EXPECT_EQ(count_lines_starting(test::slurp_file(csv), "2,"), 1);
+  EXPECT_FALSE(fs::exists(csv.string() + ".partial"));
+  // A symbolic link to a regular file stays a link; its target gets the rows.
+  const fs::path target = dir / "target.csv", link = dir / "link.csv";
+  fs::remove(link);
+  { std::ofstream(target) << "old\n"; }
+  fs::create_symlink(target, link);
+  ASSERT_EQ(
+      run_cli({"--scene", "sinc", "--steps", "1", "--quiet", "--stats", link.string()}).status, 0);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(test::slurp_file(target).rfind("step,", 0), 0u);
+}
+
+TEST(CliOutputs, AFormulaThatTurnsBadLeavesNoFileBehind) {
+  const fs::path dir = test::cli_scratch("turns_bad");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path frames = dir / "frames", meshes = dir / "meshes", csv = dir / "s.csv";
+  // NaN only for t in (0.29, 0.31), which building the surface does not sample: steps 0..2
+  // (t = 0, 0.1, 0.2) are written before step 3 (t = 0.3) fails.
+  const CliRun r = run_cli({"--scene",        "expr",
+                            "--implicit",     "x^2+y^2+z^2-1+0*sqrt(abs(t-0.3)-0.01)",
+                            "--bounds",       "-2,-2,-2,2,2,2",
+                            "--threshold",    "0.05",
+                            "--steps",        "10",
+                            "--render",       frames.string(),
+                            "--width",        "64",
+                            "--height",       "64",
+                            "--export",       meshes.string(),
+                            "--stats",        csv.string(),
+                            "--export-final", (dir / "final.ply").string(),
+                            "--quiet"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is NaN at (-2, -2, -2), t = 0.3"), std::string::npos) << r.err;
+  EXPECT_TRUE(files_in(dir).empty())
+      << files_in(dir).size() << " files, e.g. " << files_in(dir).front();
+}
+
+TEST(CliOutputs, SigtermLeavesNoPartialFile) {
+  const fs::path dir = test::cli_scratch("sigterm");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path frames = dir / "frames", csv = dir / "s.csv";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::freopen("/dev/null", "w", stdout);
+    ::freopen("/dev/null", "w", stderr);
+    ::execl(test::cli_path().c_str(), "dynamesh-cli", "run", "--scene", "sinc", "--threshold",
+            "0.001", "--steps", "400", "--render", frames.c_str(), "--width", "200", "--height",
+            "150", "--stats", csv.c_str(), nullptr);
+    ::_exit(127);
+  }
+  // Interrupted once it has written a frame or two, in the middle of the run.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (files_in(frames).size() < 2 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(files_in(frames).size(), 1u);
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  // The CSV never appears (it is complete only at the end); no temporary file stays; the
+  // frames already written are whole PNGs.
+  EXPECT_FALSE(fs::exists(csv));
+  for (const fs::path& f : files_in(dir)) {
+    EXPECT_EQ(f.extension(), ".png") << f;
+    EXPECT_EQ(test::slurp_file(f).substr(0, 4), "\x89PNG") << f;
+  }
+}
+
+TEST(CliOutputs, ExportWritesAParaViewCollection) {
+  const fs::path dir = test::cli_scratch("pvd") / "meshes";
+  fs::remove_all(dir);
+  const CliRun r = run_cli({"--scene", "sinc", "--steps", "4", "--t0", "0.1", "--t1", "0.3",
+                            "--export", dir.string(), "--export-every", "2", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string pvd = test::slurp_file(dir / "frames.pvd");
+  // One DataSet per exported step (0, 2, 4), in order, with its time and an existing file.
+  const std::regex dataset("<DataSet timestep=\"([0-9.e-]+)\"[^>]*file=\"([^\"]+)\"");
+  std::vector<std::pair<double, std::string>> sets;
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset);
+       it != std::sregex_iterator(); ++it)
+    sets.emplace_back(std::stod((*it)[1]), (*it)[2]);
+  ASSERT_EQ(sets.size(), 3u) << pvd;
+  const double times[] = {0.1, 0.2, 0.3};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(sets[i].first, times[i], 1e-9);
+    const std::string vtp = test::slurp_file(dir / sets[i].second);
+    EXPECT_NE(vtp.find("<VTKFile type=\"PolyData\""), std::string::npos) << sets[i].second;
+    EXPECT_NE(vtp.find("Name=\"error\""), std::string::npos);
+  }
+  // The last frame holds the mesh the JSON describes.
+  const std::string last = test::slurp_file(dir / sets[2].second);
+  EXPECT_NE(last.find("NumberOfPolys=\"" + std::to_string(r.json["triangles"].get<long>())),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "frame_00004.ply"));
+}
+
+}  // namespace
+}  // namespace dynamesh
