@@ -1,11 +1,14 @@
 #include "core/surface/volume/cuberille_base_mesh.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/parallel.h"
@@ -18,63 +21,64 @@ namespace {
 
 using Triangle = std::array<std::uint32_t, 3>;
 
-// Bit d of a 2x2x2 configuration is the cell at offset (d & 1, (d >> 1) & 1, d >> 2).
-bool group_connected(unsigned config, bool inside) {
-  unsigned members = 0;
-  for (unsigned d = 0; d < 8; ++d)
-    if (((config >> d) & 1u) == (inside ? 1u : 0u)) members |= 1u << d;
-  if (members == 0) return true;
-  unsigned reached = members & (~members + 1);  // lowest member
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (unsigned d = 0; d < 8; ++d) {
-      if (!((reached >> d) & 1u)) continue;
-      for (unsigned axis = 0; axis < 3; ++axis) {
-        const unsigned n = d ^ (1u << axis);  // face neighbour within the 2x2x2 block
-        if (((members >> n) & 1u) && !((reached >> n) & 1u)) {
-          reached |= 1u << n;
-          grew = true;
-        }
+using Quad = std::array<std::uint32_t, 4>;
+
+// The cuberille's faces meet non-manifoldly where two inside cells share only a lattice edge
+// or corner (four faces on one edge, two umbrellas at one corner). Those cells are kept apart:
+// at an edge with four faces, each face is glued to the other face of its own inside cell, and
+// each corner gets one vertex per cycle of faces glued around it. Filling cells instead (as
+// a "make manifold" pass would) bridges the outside gap between two sheets, and a base edge
+// across a gap never gets shorter than the gap under refinement. Returns the quads with their
+// corners renumbered; `lattice_corner[v]` is the lattice corner of new vertex v.
+std::vector<Quad> split_shared_corners(const std::vector<Quad>& quads,
+                                       const std::vector<std::size_t>& cell_of,
+                                       std::vector<std::uint32_t>& lattice_corner) {
+  const std::size_t n = quads.size();
+  // Faces around each lattice edge.
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> around;
+  auto edge_key = [](std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  for (std::size_t q = 0; q < n; ++q)
+    for (int e = 0; e < 4; ++e)
+      around[edge_key(quads[q][e], quads[q][(e + 1) % 4])].push_back(std::uint32_t(q));
+  auto partner = [&](std::size_t q, int e) {
+    const auto& faces = around.at(edge_key(quads[q][e], quads[q][(e + 1) % 4]));
+    for (std::uint32_t o : faces)
+      if (o != q && (faces.size() == 2 || cell_of[o] == cell_of[q])) return std::size_t(o);
+    throw std::logic_error("cuberille: a face edge without a partner");
+  };
+  // Union-find over (face, corner slot); slot k of face q is 4q + k.
+  std::vector<std::uint32_t> parent(4 * n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t q = 0; q < n; ++q)
+    for (int e = 0; e < 4; ++e) {
+      // Edge e runs from corner e to corner e + 1 of q; its partner holds both corners too.
+      const std::size_t o = partner(q, e);
+      for (const int k : {e, (e + 1) % 4}) {
+        const std::uint32_t corner = quads[q][k];
+        for (int m = 0; m < 4; ++m)
+          if (quads[o][m] == corner)
+            parent[find(std::uint32_t(4 * q + k))] = find(std::uint32_t(4 * o + m));
       }
     }
-  }
-  return reached == members;
-}
-
-// A cuberille's boundary is a 2-manifold at a lattice vertex exactly when the inside cells
-// and the outside cells around it are each face-connected within the 2x2x2 block.
-std::array<bool, 256> manifold_table() {
-  std::array<bool, 256> ok{};
-  for (unsigned c = 0; c < 256; ++c) ok[c] = group_connected(c, true) && group_connected(c, false);
-  return ok;
-}
-
-// Fills every 2x2x2 block around a non-manifold vertex until none is left (filling only
-// grows the inside, so this ends), filling enclosed holes each round.
-std::size_t make_manifold(MaskVolume& cells) {
-  static const std::array<bool, 256> ok = manifold_table();
-  const auto& n = cells.grid.dims;
-  std::size_t added = 0;
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (int k = 1; k < n[2]; ++k)
-      for (int j = 1; j < n[1]; ++j)
-        for (int i = 1; i < n[0]; ++i) {
-          unsigned config = 0;
-          for (unsigned d = 0; d < 8; ++d)
-            config |= unsigned(cells.at(i - 1 + (d & 1), j - 1 + ((d >> 1) & 1), k - 1 + (d >> 2)))
-                      << d;
-          if (ok[config]) continue;
-          for (unsigned d = 0; d < 8; ++d) {
-            std::uint8_t& c = cells.at(i - 1 + (d & 1), j - 1 + ((d >> 1) & 1), k - 1 + (d >> 2));
-            added += c == 0;
-            c = 1;
-          }
-          changed = true;
-        }
-    added += fill_holes(cells);
-  }
-  return added;
+  std::vector<std::uint32_t> id(4 * n, kInvalidIndex);
+  std::vector<Quad> out(n);
+  lattice_corner.clear();
+  for (std::size_t q = 0; q < n; ++q)
+    for (int k = 0; k < 4; ++k) {
+      std::uint32_t& slot = id[find(std::uint32_t(4 * q + k))];
+      if (slot == kInvalidIndex) {
+        slot = std::uint32_t(lattice_corner.size());
+        lattice_corner.push_back(quads[q][k]);
+      }
+      out[q][k] = slot;
+    }
+  return out;
 }
 
 // The counter-clockwise quad (p00, p10, p11, p01) as two triangles whose shared diagonal is
@@ -113,7 +117,6 @@ Mesh48 make_cuberille_base_mesh(const ImplicitSurface& surface, const Box3& box,
     throw std::invalid_argument(surface.name() + ": no cell of the base lattice lies inside");
   CuberilleStats s;
   s.cells_added = fill_holes(cells);
-  s.cells_added += make_manifold(cells);
 
   // Lattice corners used by boundary quads, numbered on first use.
   const std::array<int, 3> corners{grid.dims[0] + 1, grid.dims[1] + 1, grid.dims[2] + 1};
@@ -130,7 +133,8 @@ Mesh48 make_cuberille_base_mesh(const ImplicitSurface& surface, const Box3& box,
     return slot;
   };
   std::vector<Triangle> triangles;
-  std::vector<std::array<std::uint32_t, 4>> quads;
+  std::vector<Quad> quads;
+  std::vector<std::size_t> cell_of;  // the inside cell behind each quad
   for (int k = 0; k < grid.dims[2]; ++k)
     for (int j = 0; j < grid.dims[1]; ++j)
       for (int i = 0; i < grid.dims[0]; ++i) {
@@ -152,16 +156,25 @@ Mesh48 make_cuberille_base_mesh(const ImplicitSurface& surface, const Box3& box,
               return corner(p);
             };
             quads.push_back({at(0, 0), at(1, 0), at(1, 1), at(0, 1)});
+            cell_of.push_back(grid.index(i, j, k));
           }
       }
   s.quads = quads.size();
+  {
+    std::vector<std::uint32_t> lattice_corner;
+    quads = split_shared_corners(quads, cell_of, lattice_corner);
+    std::vector<Vec3> split(lattice_corner.size());
+    for (std::size_t v = 0; v < split.size(); ++v) split[v] = positions[lattice_corner[v]];
+    s.split_corners = split.size() - positions.size();
+    positions.swap(split);
+  }
 
   // Each quad separates an inside cell centre (F < 0) from an outside one (F > 0): bisection
   // between them finds a point of F = 0 on the quad's own sheet. A corner starts at the mean
   // of its quads' points and is Newton-projected from there; a Newton step that leaves the
   // corner's cell (near a medial axis |grad F| is small and the step long) is replaced by the
   // nearest of those points, which lie on the surface by construction.
-  // Cells added to make the boundary manifold have F > 0 at their centre: their quads have no
+  // Filled cavity cells have F > 0 at their centre: their quads have no
   // crossing (valid = false) and their corners rely on Newton alone.
   std::vector<Vec3> crossing(quads.size());
   std::vector<std::uint8_t> valid(quads.size(), 0);

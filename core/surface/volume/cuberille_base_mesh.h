@@ -24,7 +24,8 @@ struct CuberilleOptions {
 
 struct CuberilleStats {
   std::size_t inside_cells = 0;
-  std::size_t cells_added = 0;  // filled to make the boundary manifold (and holes)
+  std::size_t cells_added = 0;    // enclosed outside cells filled
+  std::size_t split_corners = 0;  // extra vertices where inside cells touch at an edge or corner
   std::size_t quads = 0;
 };
 

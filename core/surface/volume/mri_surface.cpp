@@ -105,6 +105,7 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   }
   MriLayersOptions layer_options;
   layer_options.volume_path = options.volume_path;
+  layer_options.mask_path = options.mask_path;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
