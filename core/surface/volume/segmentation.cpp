@@ -46,10 +46,11 @@ std::string number(double x) {
   return s.str();
 }
 
+constexpr const char* kHint =
+    "; is this a skull-stripped brain? pass a brain mask with --mask FILE (e.g. from FSL BET "
+    "or SynthStrip)";
+
 void check_plausible(const MaskVolume& mask, const SegmentationOptions& o) {
-  constexpr const char* kHint =
-      "; is this a skull-stripped brain? pass a brain mask with --mask FILE (e.g. from FSL BET "
-      "or SynthStrip)";
   if (o.max_border_contact_mm2 > 0.0) {
     const double contact = border_contact_mm2(mask);
     if (contact > o.max_border_contact_mm2)
@@ -75,7 +76,9 @@ Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
   report(progress, kStage, 0.4);
   open_mask(s.mask, options.opening_radius_mm);
   s.components = keep_largest_component(s.mask);
-  if (s.components == 0) throw std::invalid_argument("segmentation: no voxel" + where);
+  if (s.components == 0)
+    throw std::invalid_argument("segmentation: no voxel" + where + " is left by the " +
+                                number(options.opening_radius_mm) + " mm opening" + kHint);
   check_plausible(s.mask, options);
   report(progress, kStage, 0.5);
   close_mask(s.mask, options.closing_radius_mm);
