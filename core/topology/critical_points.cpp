@@ -71,7 +71,8 @@ GridField sample_field(const ImplicitSurface& surface, const ContourGrid& grid) 
 std::vector<CriticalPoint> find_critical_points(const ImplicitSurface& surface,
                                                 const ContourGrid& grid, const GridField& field,
                                                 double max_abs_value) {
-  const auto [nx, ny, nz] = grid.cells;
+  // Plain ints, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+  const int nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
   auto id = [&](int i, int j, int k) {
     return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i;
   };
