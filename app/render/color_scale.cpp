@@ -95,6 +95,27 @@ std::string color_range_text(const ColorSettings& settings) {
   return out.str();
 }
 
+std::vector<int> discrete_labels(const ColorScale& scale, int max_labels) {
+  // A typed range may be anything: the labels stay within a million either way.
+  const auto whole = [](double v) { return static_cast<long>(std::clamp(v, -1e6, 1e6)); };
+  const long first = whole(std::ceil(scale.min)), last = whole(std::floor(scale.max));
+  const auto floor_div = [](long a, long b) { return a / b - (a % b != 0 && a < 0 ? 1 : 0); };
+  const auto multiples = [&](long stride) {
+    return floor_div(last, stride) - (-floor_div(-first, stride)) + 1;
+  };
+  max_labels = std::max(max_labels, 2);
+  long stride = 1;
+  for (long decade = 1; multiples(stride) > max_labels; decade *= 10)
+    for (long step : {2, 5, 10}) {
+      stride = step * decade;
+      if (multiples(stride) <= max_labels) break;
+    }
+  std::vector<int> labels;
+  for (long v = -floor_div(-first, stride) * stride; v <= last; v += stride)
+    labels.push_back(static_cast<int>(v));
+  return labels;
+}
+
 bool has_color_scale(ColorMode mode, const FieldStats& stats) {
   return mode != ColorMode::kShaded && stats.present;
 }

@@ -41,6 +41,11 @@ struct ColorScale {
 // over the whole map.
 inline constexpr float kMinRelativeRange = 0.2f;
 
+// The integers a discrete scale's bar labels: every one when at most `max_labels` fit, else
+// the multiples of 2, 5, 10, 20, 50, ... (the first that fit), so a deep mesh's levels
+// 0 .. 30 read 0, 5, 10, ... instead of thirty-one overlapping numbers.
+std::vector<int> discrete_labels(const ColorScale& scale, int max_labels);
+
 // kShaded (or an absent field) gives no scale: the surface is drawn in its flat tint.
 bool has_color_scale(ColorMode mode, const FieldStats& stats);
 ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const FieldStats& stats);

@@ -88,7 +88,8 @@ void draw_colorbar(Image& image, const ColorScale& scale) {
     draw_text(image, x0 - 4 * s - text_width(text, s), y, text, s);
   };
   if (scale.discrete) {
-    for (int v = static_cast<int>(std::ceil(scale.min)); v <= scale.max; ++v) label_at(v);
+    // At least two text heights (7 s) apart: a deep mesh's levels are thinned.
+    for (int v : discrete_labels(scale, bar_h / (14 * s))) label_at(v);
   } else {
     for (double f : {0.0, 0.5, 1.0}) label_at(scale.min + f * (scale.max - scale.min));
   }

@@ -34,7 +34,7 @@ void SimulationDriver::request_step(const StepRequest& request) {
 
 bool SimulationDriver::busy() const {
   std::lock_guard lock(mutex_);
-  return running_step_ || pending_.has_value();
+  return computing_ || pending_.has_value();
 }
 
 void SimulationDriver::wait_idle() {
@@ -62,7 +62,7 @@ void SimulationDriver::run() {
     if (stop_) return;
     const StepRequest request = *pending_;
     pending_.reset();
-    running_step_ = true;
+    running_step_ = computing_ = true;
     lock.unlock();
     StepResult result = simulation_.step(request);  // the long part, unlocked
     lock.lock();
@@ -70,6 +70,7 @@ void SimulationDriver::run() {
     if (!result.snapshot) result.snapshot = latest_.snapshot;
     latest_ = std::move(result);
     ++published_;
+    computing_ = false;
     if (on_result_) {
       lock.unlock();
       on_result_();

@@ -45,7 +45,10 @@ class SimulationDriver {
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::optional<StepRequest> pending_;
-  bool running_step_ = false;
+  bool running_step_ = false;  // until the result's callback returned (wait_idle)
+  // Until the result is published: busy() must be false when the callback's wake-up draws a
+  // frame, or that frame shows "(computing)" and a playing viewer waits for the next event.
+  bool computing_ = false;
   bool stop_ = false;
   StepResult latest_;
   std::uint64_t published_ = 0;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <optional>
@@ -24,6 +25,8 @@
 #include "app/viewer/stats_history.h"
 #include "app/viewer/video_recorder.h"
 #include "app/viewer/viewer_panel.h"
+#include "app/viewer/widget_report.h"
+#include "core/io/atomic_file.h"
 
 namespace dynamesh {
 namespace {
@@ -95,6 +98,7 @@ class ViewerApp {
         fitted_scene_(args.camera ? std::string() : args.camera_scene),
         fitted_text_(args.camera_text) {
     status_ = args.notice;  // e.g. why the saved settings were not used
+    if (const char* path = std::getenv("DYNAMESH_WIDGET_REPORT")) widget_report_path_ = path;
     if (state_.window_x >= 0 && state_.window_y >= 0)
       window_.set_position({state_.window_x, state_.window_y});
     request(state_.time, true);
@@ -125,6 +129,7 @@ class ViewerApp {
   void toggle_recording();
   void start_recording(const std::string& dir, const std::string& stem);
   bool save_settings();  // false (and why in status_) when it fails
+  void report_widgets(const std::vector<WidgetRect>& widgets);
   int finish_scripted(double seconds);
   // Whether anything could change the picture: input, a result, playing, a scripted run.
   bool needs_frame() const;
@@ -166,6 +171,9 @@ class ViewerApp {
   std::vector<FrameSample> frames_;
   Clock::time_point started_, first_mesh_, last_frame_start_;
   int scripted_frames_ = 0;
+  // Test affordance (widget_report.h): the file named by DYNAMESH_WIDGET_REPORT, and what
+  // was last written to it.
+  std::string widget_report_path_, widget_report_written_;
 };
 
 void ViewerApp::step_by(int direction) {
@@ -455,6 +463,21 @@ bool ViewerApp::save_settings() {
   }
 }
 
+void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets) {
+  const std::string text = widget_report(widgets, state_.controls,
+                                         {results_seen_, driver_.busy(), snapshot_.get(),
+                                          last_stats_.samples, last_stats_.mean_error});
+  if (text == widget_report_written_) return;
+  try {
+    AtomicFile file(widget_report_path_);  // whole, so a reader never sees half of it
+    file.stream() << text;
+    file.commit();
+    widget_report_written_ = text;
+  } catch (const std::exception& e) {
+    status_ = e.what();
+  }
+}
+
 int ViewerApp::finish_scripted(double seconds) {
   // What the run was asked to show could not be shown (a scene or formula that does not
   // build): the screenshot shows the panel's red message over the last good mesh, the
@@ -528,6 +551,7 @@ bool ViewerApp::frame(bool timed_out) {
   info.fps = fps_;
   info.has_scale = renderer_.shows_color_scale(state_.style);
   info.scale = renderer_.color_scale(state_.style);
+  info.report_widgets = !widget_report_path_.empty();
   PanelActions actions;
   if (state_.show_panel) actions = draw_panel(state_, info);
   if (info.has_scale && state_.show_colorbar) {
@@ -544,6 +568,7 @@ bool ViewerApp::frame(bool timed_out) {
   }
   if (args_.orbit) state_.camera.orbit({0.0f, 0.0f}, {0.004f, 0.0f});  // as if dragged
   apply(actions);
+  if (info.report_widgets) report_widgets(actions.widgets);
   render_frame();
   // Both read this frame, drawn but not yet swapped.
   if (actions.screenshot)

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/io/number_text.h"
 #include "app/render/color_scale.h"
+#include "core/io/number_text.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -46,8 +46,7 @@ void validate_state(const ViewerState& s) {
   for (const SceneInfo& info : list_scenes()) known = known || info.name == c.scene;
   if (!known) {
     const std::string shown = c.scene.size() > 40 ? c.scene.substr(0, 40) + "..." : c.scene;
-    throw std::invalid_argument("unknown scene '" + shown + "' (" +
-                                std::to_string(c.scene.size()) +
+    throw std::invalid_argument("unknown scene '" + shown + "' (" + std::to_string(c.scene.size()) +
                                 " characters; dynamesh-cli scenes lists them)");
   }
   if (!(std::isfinite(c.threshold) && c.threshold > 0))
@@ -169,9 +168,10 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         std::string names;
         for (const SceneInfo& info : scenes) names += (names.empty() ? "" : ", ") + info.name;
         throw std::invalid_argument(
-            "unknown scene '" + (name.size() > 40 ? name.substr(0, 40) + "...' (" +
-                                                        std::to_string(name.size()) + " characters)"
-                                                  : name + "'") +
+            "unknown scene '" +
+            (name.size() > 40
+                 ? name.substr(0, 40) + "...' (" + std::to_string(name.size()) + " characters)"
+                 : name + "'") +
             " (scenes: " + names + ")");
       }
       switch_scene(s, name);
@@ -184,6 +184,14 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
         throw std::invalid_argument(opt + " needs a value, got an empty string");
       return args[++i];
     };
+    // A value's own parser does not know the option it came with: its message gets it.
+    const auto naming_option = [&](auto&& parse) {
+      try {
+        return parse();
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(opt + ": " + e.what());
+      }
+    };
     if (opt == "--help" || opt == "-h") {
       a.help = true;
     } else if (opt == "--version") {
@@ -191,7 +199,7 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--scene") {
       value();  // switched to above
     } else if (opt == "--param") {
-      parameters.push_back(parse_parameter_override(value()));
+      parameters.push_back(naming_option([&] { return parse_parameter_override(value()); }));
     } else if (const char* key = text_option_key(opt, args, i)) {
       text.emplace_back(key, value());
     } else if (opt == "--t0") {
@@ -222,9 +230,9 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--wireframe" || opt == "--no-wireframe") {
       s.style.wireframe = opt == "--wireframe";
     } else if (opt == "--camera") {
-      a.camera = parse_camera_view(value());
+      a.camera = naming_option([&] { return parse_camera_view(value()); });
     } else if (opt == "--color-range") {
-      parse_color_range(value(), s.style.colors);
+      naming_option([&] { return parse_color_range(value(), s.style.colors); });
     } else if (opt == "--k") {
       s.controls.k = to_number(opt, value());
     } else if (opt == "--smooth-iters") {
@@ -285,12 +293,11 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
   if (a.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (a.orbit && a.run_for < 0) throw std::invalid_argument("--orbit needs --run-for");
   if (!s.keyframes.empty()) {
-    s.t0 = *std::min_element(s.keyframes.begin(), s.keyframes.end());
-    s.t1 = *std::max_element(s.keyframes.begin(), s.keyframes.end());
     s.playhead = 0;
     s.time = s.keyframes.front();
   }
-  s.time = std::clamp(s.time, s.t0, s.t1);
+  const auto [first, last] = s.time_range();
+  s.time = std::clamp(s.time, first, last);
   s.style.colors.threshold = s.controls.threshold;
   return a;
 }

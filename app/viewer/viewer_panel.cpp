@@ -103,6 +103,15 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   }
 }
 
+// The rectangle of the widget just drawn, for a test that drives the panel (widget_report.h):
+// the part the mouse acts on (a slider's label beside its frame is not).
+void note_widget(PanelActions& a, const PanelInfo& info, const char* label) {
+  if (!info.report_widgets) return;
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  a.widgets.push_back({label, lo.x, lo.y, std::min(hi.x, lo.x + ImGui::CalcItemWidth()), hi.y,
+                       ImGui::IsItemActive()});
+}
+
 // A slider for a setting that spans decades (T, eps, density): logarithmic, committed when
 // released (each value of a drag would restart the adaptation), Ctrl-click types a value.
 bool log_slider(const char* label, double& value, double lo, double hi, const char* format) {
@@ -124,18 +133,27 @@ void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) 
     }
   bool changed =
       log_slider("threshold T", c.threshold, 0.01 * suggested_t, 100 * suggested_t, "%.4g");
+  note_widget(a, info, "threshold T");
   // The band keeps its width relative to T (the CLI's default is T/4): T/100 with the old
-  // absolute eps would leave no room to weld.
-  if (c.threshold != before.threshold && before.threshold > 0)
-    c.epsilon = before.epsilon * c.threshold / before.threshold;
+  // absolute eps would leave no room to weld. The ratio is the one when the slider was
+  // grabbed: a typed "0.002" passes through 0, 0., 0.0 and 0.00, which would collapse it.
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  const ImGuiID band = ImGui::GetID("band ratio");
+  if (ImGui::IsItemActivated() && before.threshold > 0)
+    storage->SetFloat(band, static_cast<float>(before.epsilon / before.threshold));
+  if (c.threshold != before.threshold && c.threshold > 0)
+    c.epsilon = storage->GetFloat(band, 0.25f) * c.threshold;
   changed |= log_slider("epsilon", c.epsilon, 1e-3 * c.threshold, 0.99 * c.threshold, "%.4g");
+  note_widget(a, info, "epsilon");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("hysteresis half-width; follows T when T changes");
   changed |=
       log_slider("density", c.density, 0.01 * suggested_density, 100 * suggested_density, "%.4g");
+  note_widget(a, info, "density");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per unit area (at least 9 per triangle)");
   const double k_lo = 0.0, k_hi = 10.0;
   ImGui::SliderScalar("curvature sensitivity k", ImGuiDataType_Double, &c.k, &k_lo, &k_hi, "%.3g");
   changed |= ImGui::IsItemDeactivatedAfterEdit();
+  note_widget(a, info, "k");
   ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
   ImGui::InputDouble("edge length", &c.edge_length, 0.01, 0.1, "%.4g", kOnEnter);
   if (ImGui::IsItemHovered())
@@ -163,12 +181,15 @@ void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   a.step_back |= ImGui::Button("<");
   ImGui::SameLine();
   a.step_forward |= ImGui::Button(">");
+  note_widget(a, info, "step forward");
   ImGui::SameLine();
   a.restart |= ImGui::Button("Restart");
+  note_widget(a, info, "Restart");
   ImGui::SameLine();
   ImGui::Checkbox("loop", &s.loop);
   float t = static_cast<float>(s.time);
-  if (ImGui::SliderFloat("time", &t, static_cast<float>(s.t0), static_cast<float>(s.t1))) {
+  const auto [first, last] = s.time_range();
+  if (ImGui::SliderFloat("time", &t, static_cast<float>(first), static_cast<float>(last))) {
     s.time = t;
     a.controls_changed = true;
   }
@@ -353,7 +374,9 @@ void draw_colorbar_window(const ColorScale& scale, float window_width, float win
     draw->AddText(ImVec2(x0 - 6 - size.x, y - 0.5f * size.y), text, t.c_str());
   };
   if (scale.discrete) {
-    for (int v = static_cast<int>(scale.min + 0.5f); v <= scale.max; ++v) label(v);
+    // At least one and a half lines apart: a deep mesh's levels are thinned.
+    const float line = ImGui::GetTextLineHeight();
+    for (int v : discrete_labels(scale, static_cast<int>(bar_h / (1.5f * line)))) label(v);
   } else {
     for (double f : {0.0, 0.25, 0.5, 0.75, 1.0}) label(scale.min + f * (scale.max - scale.min));
   }

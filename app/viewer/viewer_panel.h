@@ -9,6 +9,7 @@
 #include "app/viewer/formula_examples.h"
 #include "app/viewer/stats_history.h"
 #include "app/viewer/viewer_state.h"
+#include "app/viewer/widget_report.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -20,6 +21,7 @@ struct PanelActions {
   bool fit = false, reset_camera = false;
   bool screenshot = false, toggle_recording = false;
   bool save_settings = false, reset_settings = false;
+  std::vector<WidgetRect> widgets;  // where the sliders are, when PanelInfo::report_widgets
 };
 
 struct PanelInfo {
@@ -39,6 +41,7 @@ struct PanelInfo {
   float fps = 0.0f;
   bool has_scale = false;
   ColorScale scale;
+  bool report_widgets = false;  // a test asked where the widgets are (widget_report.h)
 };
 
 constexpr float kPanelWidth = 340.0f;

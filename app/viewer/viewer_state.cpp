@@ -1,8 +1,8 @@
 #include "app/viewer/viewer_state.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -246,6 +246,12 @@ double ViewerState::keyframe_time(int step) const {
   const std::size_t segment = std::min<std::size_t>(step / n, keyframes.size() - 2);
   const double a = keyframes[segment], b = keyframes[segment + 1];
   return a + (b - a) * (step - static_cast<int>(segment) * n) / n;
+}
+
+std::pair<double, double> ViewerState::time_range() const {
+  if (keyframes.empty()) return {t0, t1};
+  const auto [lo, hi] = std::minmax_element(keyframes.begin(), keyframes.end());
+  return {*lo, *hi};
 }
 
 void switch_scene(ViewerState& state, const std::string& scene) {

@@ -7,6 +7,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/render/camera.h"
@@ -58,7 +59,7 @@ struct ViewerState {
   int record_fps = 30;
 
   // --keyframes: the times playback visits in order, `steps` steps per segment, instead of
-  // t0 .. t1 (t0 and t1 are then the smallest and largest keyframe, for the time slider).
+  // t0 .. t1 (which stay as they were: keyframes are for this session, t0 and t1 are saved).
   // `playhead` counts the steps taken along them. Not saved.
   std::vector<double> keyframes;
   int playhead = 0;
@@ -67,6 +68,8 @@ struct ViewerState {
   // Keyframes: the number of steps along all segments, and the time after `step` of them.
   int keyframe_steps() const;
   double keyframe_time(int step) const;
+  // The times the time slider spans: the keyframes' smallest to largest, else t0 .. t1.
+  std::pair<double, double> time_range() const;
 };
 
 // Switches to `scene`: the current scene's settings go to scene_settings, the new scene's

@@ -4,15 +4,22 @@
 // nothing. Runs are short and coarse where the direction still shows clearly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_runner.h"
+#include "ply_reader.h"
 
 namespace dynamesh {
 namespace {
 
+namespace fs = std::filesystem;
 using test::Args;
 using test::CliRun;
 using test::run_cli;
@@ -134,6 +141,116 @@ TEST(CliOptions, CurvatureSensitivityHoldsVerticesInCurvedRegions) {
   // vertices where the surface curves (Equation 1: exp(-k l) scales their move).
   EXPECT_LT(plain["mean_aspect_ratio"], sensitive["mean_aspect_ratio"]);
   EXPECT_NE(plain["survivor_displacement_mean"], sensitive["survivor_displacement_mean"]);
+}
+
+TEST(CliOptions, RawCurvatureHoldsMoreOnAStronglyCurvedScene) {
+  // Equation 1's exp(-k l): l is the curvature normalised to [0, 1] over the mesh by default;
+  // raw, it is the curvature itself, up to ~18 per unit on the sinc's crest, so crest
+  // vertices hardly move and the triangles there stay as split (rounder without).
+  const Args run = scene("sinc") + Args{"--steps", "4", "--smooth-iters", "3"};
+  const CliRun normalised = ok(run);
+  const CliRun raw = ok(run + Args{"--smooth-raw-curvature"});
+  EXPECT_GT(raw["mean_aspect_ratio"], normalised["mean_aspect_ratio"] + 0.05);
+  EXPECT_LT(raw["survivor_displacement_mean"], normalised["survivor_displacement_mean"]);
+}
+
+TEST(CliOptions, NoStructuralOnlyMovesTheMesh) {
+  const Args run = scene("sinc");
+  const CliRun adapted = ok(run);
+  const CliRun moved = ok(run + Args{"--no-structural"});
+  EXPECT_GT(adapted["splits"], 100);
+  EXPECT_EQ(moved["splits"], 0);
+  EXPECT_EQ(moved["welds"], 0);
+  // The base mesh, every step: as many triangles at the start as at the end, far fewer than
+  // the adapted mesh, and its vertices follow the surface.
+  EXPECT_EQ(moved.json["keyframe_triangles"][0].get<double>(), moved["triangles"]);
+  EXPECT_LT(moved["triangles"], adapted["triangles"] / 4);
+  EXPECT_GT(moved["survivor_displacement_mean"], 0);
+  EXPECT_GT(moved["max_sample_error"], 0.01);  // nothing refines it within T + eps
+}
+
+TEST(CliOptions, QuietDropsTheProgressLinesOnly) {
+  const Args run = scene("sinc");
+  CliRun loud = run_cli(run);
+  CliRun quiet = run_cli(run + Args{"--quiet"});
+  ASSERT_EQ(loud.status, 0) << loud.err;
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  // One progress line per step (0, 1, 2) without it; none with it; the same JSON.
+  const auto progress_lines = [](const std::string& err) {
+    std::istringstream lines(err);
+    int n = 0;
+    for (std::string line; std::getline(lines, line);) n += line.rfind("step ", 0) == 0 ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(progress_lines(loud.err), 3) << loud.err;
+  EXPECT_EQ(progress_lines(quiet.err), 0) << quiet.err;
+  loud.json.erase("seconds_per_step");  // all but the timing: the same JSON
+  quiet.json.erase("seconds_per_step");
+  EXPECT_EQ(loud.json, quiet.json);
+}
+
+TEST(CliOptions, CheckVerifiesWithoutChangingTheRun) {
+  // --check verifies the 4-8 invariants after every step: on a healthy run it finds nothing
+  // and changes nothing (a broken mesh cannot be made through the binary; the check itself
+  // is Mesh48::check, tested in test_mesh48).
+  const Args run = scene("capsule-bend");
+  const CliRun plain = ok(run);
+  const CliRun checked = ok(run + Args{"--check"});
+  for (const char* key : {"triangles", "vertices", "max_sample_error", "splits", "welds"})
+    EXPECT_EQ(plain[key], checked[key]) << key;
+}
+
+TEST(CliOptions, PeriodicClosesTheSeam) {
+  // The wobbling tube (assets/examples): u runs around it. --periodic u glues u = 0 to
+  // u = 2 pi; without it the tube is a sheet rolled up with an open seam along its length.
+  const fs::path dir = test::cli_scratch("periodic");
+  const Args tube{"--scene",
+                  "expr",
+                  "--parametric",
+                  "sin(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v)); v; cos(u)*(1 + 0.3*sin(2*pi*t)*cos(3*v))",
+                  "--domain",
+                  "0,2*pi,-1,1",
+                  "--steps",
+                  "2",
+                  "--t1",
+                  "0.2"};
+  const auto boundary_edges = [&](const Args& extra, const std::string& name) {
+    const std::string ply = (dir / (name + ".ply")).string();
+    const CliRun r = ok(tube + extra + Args{"--export-final", ply});
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+    for (const auto& f : test::read_ply(ply).faces)
+      for (std::size_t i = 0; i < f.size(); ++i) ++uses[std::minmax(f[i], f[(i + 1) % f.size()])];
+    return std::count_if(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; });
+  };
+  const long closed = boundary_edges({"--periodic", "u"}, "closed");
+  const long open = boundary_edges({}, "open");
+  // Closed: the two rims (v = -1, 1) alone; open: the seam's two sides too.
+  EXPECT_GT(closed, 0);
+  EXPECT_GT(open, closed + 8) << open << " vs " << closed;
+}
+
+TEST(CliOptions, BadValuesExitTwoWithOneLineNamingTheOption) {
+  // Those test_cli.cpp and test_cli_hostile.cpp do not already refuse.
+  const std::vector<Args> cases = {
+      {"--k", "-1"},
+      {"--smooth-iters", "-1"},
+      {"--edge-length", "-1"},
+      {"--seed", "-1"},
+      {"--export-every", "0"},
+      {"--camera", "1,2,3,4"},
+      {"--color-range", "5,1"},
+      {"--keyframes", "0,2"},
+      {"--scene", "expr", "--parametric", "u;v;0", "--domain", "0,1,0,1", "--periodic", "w"},
+      {"--scene", "expr", "--parametric", "u;v;0", "--domain", "0,1"},
+      {"--scene", "expr", "--implicit", "x^2+y^2+z^2-1", "--bounds", "1,1,1"}};
+  for (const Args& args : cases) {
+    const std::string& named = args[args.size() - 2];
+    SCOPED_TRACE(named);
+    const CliRun r = run_cli(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+  }
 }
 
 TEST(CliOptions, StatedDefaultsChangeNothing) {

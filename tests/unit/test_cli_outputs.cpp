@@ -1,19 +1,22 @@
 // What dynamesh-cli leaves on disk (issue 12): `--stats -` and /dev/stdout are written in
 // place (the device node stays), a FIFO stays a FIFO, a run whose formula turns bad part way
 // removes every file it wrote, Ctrl-C / SIGTERM leaves no partial file, and --export writes
-// a ParaView collection naming its frames with their times.
+// a ParaView collection naming its frames with their times, which VTK itself reads.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <thread>
 
 #include "cli_runner.h"
+#include "ply_reader.h"
 
 namespace dynamesh {
 namespace {
@@ -186,6 +189,71 @@ TEST(CliOutputs, ExportWritesAParaViewCollection) {
   EXPECT_NE(last.find("NumberOfPolys=\"" + std::to_string(r.json["triangles"].get<long>())),
             std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "frame_00004.ply"));
+}
+
+TEST(CliOutputs, ExportCollectionReadsInVtk) {
+  // An independent reader: VTK's own vtkXMLPolyDataReader (python3-vtk9) reads every frame the
+  // .pvd names (tests/support/read_paraview_collection.py; VTK has no .pvd reader, ParaView's
+  // is not part of it, so the collection is parsed with Python's XML parser). What it reads
+  // must be the run: the PLY twin of each frame (read by this test's own PLY reader) and the
+  // JSON's counts.
+  const fs::path dir = test::cli_scratch("pvd_vtk") / "meshes";
+  fs::remove_all(dir);
+  const CliRun r =
+      run_cli({"--scene", "sinc", "--steps", "4", "--t0", "0.1", "--t1", "0.3", "--export",
+               dir.string(), "--export-every", "2", "--color", "error", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const fs::path out = dir.parent_path() / "vtk.json", err = dir.parent_path() / "vtk.err";
+  const std::string command = "/usr/bin/python3 " +
+                              test::shell_quoted(std::string(DYNAMESH_SOURCE_DIR) +
+                                                 "/tests/support/read_paraview_collection.py") +
+                              " " + test::shell_quoted((dir / "frames.pvd").string()) + " > " +
+                              test::shell_quoted(out.string()) + " 2> " +
+                              test::shell_quoted(err.string());
+  ASSERT_EQ(std::system(command.c_str()), 0) << test::slurp_file(err);
+  const nlohmann::json vtk = nlohmann::json::parse(test::slurp_file(out));
+  const nlohmann::json& frames = vtk["frames"];
+  ASSERT_EQ(frames.size(), 3u) << vtk;
+  const double times[] = {0.1, 0.2, 0.3};
+  const char* plys[] = {"frame_00000.ply", "frame_00002.ply", "frame_00004.ply"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE(plys[i]);
+    const nlohmann::json& f = frames[i];
+    EXPECT_NEAR(f["time"].get<double>(), times[i], 1e-9);
+    EXPECT_TRUE(f["triangles_only"].get<bool>());
+    const test::PlyData ply = test::read_ply((dir / plys[i]).string());
+    EXPECT_EQ(f["points"].get<std::size_t>(), ply.vertices.size());
+    EXPECT_EQ(f["polys"].get<std::size_t>(), ply.faces.size());
+    // The same points: the bounding boxes agree (both are float32 copies of one mesh).
+    for (int axis = 0; axis < 3; ++axis) {
+      const int c = test::ply_column(ply, std::string(1, char('x' + axis)));
+      ASSERT_GE(c, 0);
+      double lo = 1e300, hi = -1e300;
+      for (const auto& v : ply.vertices) lo = std::min(lo, v[c]), hi = std::max(hi, v[c]);
+      EXPECT_NEAR(f["bounds"][2 * axis].get<double>(), lo, 1e-6);
+      EXPECT_NEAR(f["bounds"][2 * axis + 1].get<double>(), hi, 1e-6);
+    }
+    // The error field: the PLY's per-vertex error, within the hysteresis band's top (sinc:
+    // T + eps = 0.01), not all zero; unit normals.
+    const int e = test::ply_column(ply, "error");
+    ASSERT_GE(e, 0);
+    double lo = 1e300, hi = -1e300;
+    for (const auto& v : ply.vertices) lo = std::min(lo, v[e]), hi = std::max(hi, v[e]);
+    const nlohmann::json& error = f["arrays"]["error"];
+    EXPECT_EQ(error[0].get<int>(), 1);
+    EXPECT_NEAR(error[1].get<double>(), lo, 1e-7);
+    EXPECT_NEAR(error[2].get<double>(), hi, 1e-7);
+    EXPECT_GE(error[1].get<double>(), 0.0);
+    EXPECT_LE(error[2].get<double>(), 0.01 + 1e-6);
+    EXPECT_GT(error[2].get<double>(), 0.002);
+    const nlohmann::json& normals = f["arrays"]["normals"];
+    EXPECT_EQ(normals[0].get<int>(), 3);
+    EXPECT_NEAR(normals[1].get<double>(), 1.0, 1e-5);
+    EXPECT_NEAR(normals[2].get<double>(), 1.0, 1e-5);
+  }
+  // The last frame is the mesh the JSON describes.
+  EXPECT_EQ(frames[2]["polys"].get<double>(), r["triangles"]);
+  EXPECT_EQ(frames[2]["points"].get<double>(), r["vertices"]);
 }
 
 }  // namespace

@@ -62,5 +62,29 @@ TEST(ColorScale, FieldOfZerosStillGetsANonEmptyRange) {
   EXPECT_GT(s.max, s.min);
 }
 
+TEST(ColorScale, DiscreteLabelsThinToWhatFits) {
+  ColorScale level;
+  level.discrete = true;
+  level.min = -0.5f;
+  level.max = 8.5f;
+  // Levels 0 .. 8: each its own label when nine fit, every second when five do.
+  EXPECT_EQ(discrete_labels(level, 9), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(discrete_labels(level, 5), (std::vector<int>{0, 2, 4, 6, 8}));
+  // A deep mesh: 0 .. 31 in at most 8 labels, multiples of 5.
+  level.max = 31.5f;
+  EXPECT_EQ(discrete_labels(level, 8), (std::vector<int>{0, 5, 10, 15, 20, 25, 30}));
+  // Valence 3 .. 10 (bins from 2.5): all eight when they fit.
+  ColorScale valence = color_scale(ColorMode::kValence, ColorSettings{}, FieldStats{});
+  EXPECT_EQ(discrete_labels(valence, 8).size(), 8u);
+  EXPECT_EQ(discrete_labels(valence, 8).front(), 3);
+  // A typed range far from zero, and a huge one: never more than asked for.
+  level.min = -1e9f;
+  level.max = 1e9f;
+  EXPECT_LE(discrete_labels(level, 6).size(), 6u);
+  level.min = -7.5f;
+  level.max = -0.5f;
+  EXPECT_EQ(discrete_labels(level, 4), (std::vector<int>{-6, -4, -2}));
+}
+
 }  // namespace
 }  // namespace dynamesh

@@ -1,0 +1,43 @@
+#include "app/viewer/widget_report.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "core/geometry/mesh_quality.h"
+
+namespace dynamesh {
+
+double mean_aspect_ratio(const MeshSnapshot& mesh) {
+  const auto& p = mesh.positions;
+  const auto vertex = [&](std::uint32_t v) { return Vec3(p[3 * v], p[3 * v + 1], p[3 * v + 2]); };
+  double sum = 0.0;
+  const std::size_t n = mesh.n_triangles();
+  for (std::size_t f = 0; f < n; ++f) {
+    const std::uint32_t* t = &mesh.triangles[3 * f];
+    sum += aspect_ratio(vertex(t[0]), vertex(t[1]), vertex(t[2]));
+  }
+  return n > 0 ? sum / double(n) : 0.0;
+}
+
+std::string widget_report(const std::vector<WidgetRect>& widgets,
+                          const SimulationControls& controls, const ShownState& shown) {
+  std::ostringstream out;
+  out.precision(10);
+  for (const WidgetRect& w : widgets) {
+    std::string label = w.label;
+    std::replace(label.begin(), label.end(), ' ', '_');
+    out << "widget " << label << ' ' << w.x0 << ' ' << w.y0 << ' ' << w.x1 << ' ' << w.y1 << '\n';
+    if (w.active) out << "active " << label << '\n';
+  }
+  out << "threshold " << controls.threshold << "\nepsilon " << controls.epsilon << "\ndensity "
+      << controls.density << "\nk " << controls.k << "\nresults " << shown.results << "\nbusy "
+      << (shown.busy ? 1 : 0) << '\n';
+  if (shown.mesh != nullptr) {
+    out << "step " << shown.mesh->step << "\ntriangles " << shown.mesh->n_triangles()
+        << "\nmean_aspect " << mean_aspect_ratio(*shown.mesh) << "\nsamples " << shown.samples
+        << "\nmean_error " << shown.mean_error << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace dynamesh

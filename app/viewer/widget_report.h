@@ -1,0 +1,42 @@
+// Test affordance (issue 12): where the panel's named widgets are and what the viewer shows,
+// so a test can move the sliders with a real mouse and keyboard (xdotool under Xvfb) without
+// hard-coded pixels, and see what they did. Written only when the environment names a file:
+// DYNAMESH_WIDGET_REPORT=FILE (viewer_app.cpp); one "key value..." line each:
+//   widget LABEL X0 Y0 X1 Y1   a widget's rectangle in window pixels (spaces in LABEL: '_')
+//   active LABEL               the widget being dragged or typed into, if any
+//   threshold T, epsilon E, density D, k K   the controls as the panel holds them
+//   results N, busy 0|1        results taken so far; whether a step is being computed
+//   step S, triangles N, mean_aspect A   the mesh on screen (A: mean R / 2r, measured here)
+//   samples N, mean_error E    the adapter's sample count and mean sampled error then
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/viewer/simulation.h"
+#include "core/adapt/mesh_snapshot.h"
+
+namespace dynamesh {
+
+struct WidgetRect {
+  std::string label;
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool active = false;  // being dragged or typed into
+};
+
+struct ShownState {
+  std::uint64_t results = 0;
+  bool busy = false;
+  const MeshSnapshot* mesh = nullptr;  // null before the first mesh
+  std::size_t samples = 0;             // the last step's
+  double mean_error = 0.0;
+};
+
+std::string widget_report(const std::vector<WidgetRect>& widgets,
+                          const SimulationControls& controls, const ShownState& shown);
+
+// Mean aspect ratio R / (2 r) over the snapshot's triangles (0 when it has none).
+double mean_aspect_ratio(const MeshSnapshot& mesh);
+
+}  // namespace dynamesh
