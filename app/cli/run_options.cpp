@@ -25,8 +25,8 @@ double parse_number(const std::string& option, const std::string& text) {
 }
 
 long parse_integer(const std::string& option, const std::string& text) {
-  const std::optional<long long> value = parse_whole_number(text, -9'000'000'000'000'000LL,
-                                                            9'000'000'000'000'000LL);
+  const std::optional<long long> value =
+      parse_whole_number(text, -9'000'000'000'000'000LL, 9'000'000'000'000'000LL);
   if (!value) throw UsageError(option + " expects a whole number, got '" + text + "'");
   return static_cast<long>(*value);
 }
@@ -156,6 +156,7 @@ const std::map<std::string, Setter>& valued_options() {
          o.adapt.seed = static_cast<std::uint64_t>(n);
        }},
       {"--volume", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("volume", v); }},
+      {"--mask", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("mask", v); }},
       {"--implicit",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("implicit", v); }},
       // --height is both the image height (DESIGN.md, --render) and the height-field formula
@@ -188,9 +189,7 @@ const std::map<std::string, Setter>& valued_options() {
       {"--export-final", [](RunOptions& o, auto&, auto& v) { o.export_final_path = v; }},
       {"--export", [](RunOptions& o, auto&, auto& v) { o.export_dir = v; }},
       {"--export-every",
-       [](RunOptions& o, auto& k, auto& v) {
-         o.export_every = parse_int(k, v, 1, kMaxSteps);
-       }},
+       [](RunOptions& o, auto& k, auto& v) { o.export_every = parse_int(k, v, 1, kMaxSteps); }},
       {"--render", [](RunOptions& o, auto&, auto& v) { o.render_dir = v; }},
       {"--width",
        [](RunOptions& o, auto& k, auto& v) { o.width = parse_int(k, v, 16, kMaxImageSide); }},
@@ -310,6 +309,8 @@ Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
   --param KEY=VALUE      set a scene parameter (repeatable; 'dynamesh-cli scenes' lists them)
   --volume FILE          mri: a NIfTI brain volume (.nii or .nii.gz)
+  --mask FILE            mri: a brain mask on the volume's grid (nonzero = brain, from BET,
+                         SynthStrip, ...), used instead of the built-in segmentation
   --implicit EXPR | --height-field EXPR | --parametric "X;Y;Z"   expr: a typed surface
                          (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh

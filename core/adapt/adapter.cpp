@@ -56,7 +56,7 @@ class Adapter::Tracker final : public MeshListener {
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
     grow(mesh);
     probe_.place_split_vertex(mesh, change);
-    if (!probe_.project_vertex(mesh, change.vertex)) ++projection_failures;
+    if (!probe_.project_split_vertex(mesh, change)) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
     for (int h = 0; h < change.count; ++h)
       for (Face f : change.halves[h].children) touch(f);

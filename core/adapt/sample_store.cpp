@@ -142,7 +142,8 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     // one square root per sample).
     for (Sample* x = first; x != last; ++x) {
       const Vec3 b(1.0 - x->b1 - x->b2, x->b1, x->b2);
-      const double r = probe.signed_distance(b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
+      const double r =
+          probe.signed_distance_in_triangle(p, b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
       x->error = static_cast<float>(std::abs(r));
       model.add(b, r);
     }

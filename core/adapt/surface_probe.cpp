@@ -1,6 +1,8 @@
 #include "core/adapt/surface_probe.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/surface/projection.h"
 #include "core/surface/surface_distance.h"
@@ -33,6 +35,54 @@ bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
   return r.converged;
 }
 
+bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& change) const {
+  if (parametric_) return project_vertex(mesh, change.vertex);
+  const Vec3 m = mesh.position(change.vertex);
+  const Vec3 a = mesh.position(change.parents[0]), b = mesh.position(change.parents[1]);
+  const double length = (b - a).norm();
+  // A midpoint lies within about half an edge of the surface; a longer jump is Newton lost
+  // where |grad F| is small, and lands on another part of the surface.
+  ProjectionOptions local;
+  local.max_step = 0.5 * length;
+  const ProjectionResult newton = project_to_surface(*implicit_, m, local);
+  Vec3 normal = Vec3::Zero();
+  for (int h = 0; h < change.count; ++h) {
+    const Vec3 apex = mesh.position(change.halves[h].parent_vertices[0]);
+    const Vec3 pa = mesh.position(change.halves[h].parent_vertices[1]);
+    const Vec3 pb = mesh.position(change.halves[h].parent_vertices[2]);
+    normal += (pa - apex).cross(pb - apex);
+  }
+  const Vec3 d = newton.point - m;
+  const double along = std::abs(d.dot(normal.normalized()));
+  const bool sideways = normal.norm() > 0 && d.norm() > 0.1 * length && along < 0.7 * d.norm();
+  if (newton.converged && !sideways && d.norm() <= length) {
+    mesh.position(change.vertex) = newton.point;
+    return true;
+  }
+  // Nearest sign change of F along the normal line through m, within 4 edge lengths.
+  const Vec3 n = normal.normalized();
+  const double f0 = implicit_->value(m);
+  const double step = length / 16.0;
+  for (int i = 1; i <= 64 && normal.norm() > 0; ++i) {
+    for (const double sign : {-1.0, 1.0}) {
+      const double s0 = sign * (i - 1) * step, s1 = sign * i * step;
+      if ((implicit_->value(m + s1 * n) < 0.0) == (f0 < 0.0)) continue;
+      double lo = s0, hi = s1;
+      for (int it = 0; it < 40; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        ((implicit_->value(m + mid * n) < 0.0) == (f0 < 0.0) ? lo : hi) = mid;
+      }
+      const ProjectionResult r = project_to_surface(*implicit_, m + 0.5 * (lo + hi) * n, local);
+      if (r.converged && (r.point - m).norm() <= 4.0 * length) {
+        mesh.position(change.vertex) = r.point;
+        return true;
+      }
+    }
+  }
+  mesh.position(change.vertex) = newton.point;
+  return newton.converged;
+}
+
 Vec3 SurfaceProbe::predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest) const {
   const Vec3& p = mesh.position(v);
   if (parametric_) return parametric_->position(mesh.uv(v)) - p;
@@ -53,7 +103,18 @@ Vec3 SurfaceProbe::residual_at(const Vec3 p[3], const Vec2 uv[3], const Vec3& b)
     return x - parametric_->position(
                    parametric_->wrap_into_domain(b[0] * uv[0] + b[1] * uv1 + b[2] * uv2));
   }
-  return Vec3(signed_distance(x), 0, 0);
+  return Vec3(signed_distance_in_triangle(p, x), 0, 0);
+}
+
+// The triangle's corners lie on the surface, so no point of it is farther from the surface
+// than from its nearest corner. The cap matters where |grad F| is small (between nearly
+// touching sheets of a brain layer): there F / |grad F| and Newton's path both overstate the
+// distance without bound, and a face whose error cannot fall by splitting is split without end.
+double SurfaceProbe::signed_distance_in_triangle(const Vec3 p[3], const Vec3& x) const {
+  const double sd = signed_distance(x);
+  double cap2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) cap2 = std::min(cap2, (x - p[i]).squaredNorm());
+  return sd * sd > cap2 ? std::copysign(std::sqrt(cap2), sd) : sd;
 }
 
 double SurfaceProbe::signed_distance(const Vec3& x) const {

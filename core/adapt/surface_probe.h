@@ -38,6 +38,12 @@ class SurfaceProbe {
   // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
   // periodic seam); call before project_vertex.
   void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
+  // project_vertex for a vertex a split just created. Implicit: when Newton from the edge's
+  // midpoint slides mostly sideways (the edge bridges a crease or a sulcus and the nearest
+  // point is on a wall), the vertex goes instead to the nearest zero of F along the
+  // diamond's normal, down into the crease. Without this a bridging edge never gets shorter
+  // than the gap it spans and the split queue grows without end.
+  bool project_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
 
   // Distance to the surface of the point with barycentric coordinates b over the triangle
   // (v0, v1, v2) (positions p, parameters uv). Implicit: the first-order distance
@@ -52,6 +58,9 @@ class SurfaceProbe {
   // Implicit only: the signed distance of x to the surface (negative inside), the scalar
   // residual_at() wraps.
   double signed_distance(const Vec3& x) const;
+  // signed_distance of a point x of the triangle p, at most its distance to the nearest
+  // corner (the corners are on the surface).
+  double signed_distance_in_triangle(const Vec3 p[3], const Vec3& x) const;
 
   // Unit normal of the surface at a vertex (parametric: at its (u, v)).
   Vec3 normal_at(const Mesh48& mesh, Vertex v) const;

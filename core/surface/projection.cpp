@@ -36,7 +36,8 @@ ProjectionResult project_to_surface(const ImplicitSurface& surface, const Vec3& 
     Vec3 step = (f / g2) * g;
     // A nearly flat F proposes huge steps; no projection should cross the whole scene.
     const double length = std::abs(f) / gnorm;
-    if (length > scale) step *= scale / length;
+    const double longest = options.max_step > 0.0 ? options.max_step : scale;
+    if (length > longest) step *= longest / length;
     Vec3 next = result.point - step;
     Vec3 g_next;
     double f_next = surface.value_gradient(next, g_next);

@@ -18,6 +18,10 @@ struct ProjectionOptions {
   double tolerance = 1e-10;
   int max_iterations = 64;
   int max_halvings = 30;
+  // Longest single step, in length units; 0: the surface's length_scale(). Where |grad F| is
+  // small (near a medial axis, between nearly touching sheets) a Newton step can jump across
+  // the scene; callers that know the local scale (a split edge's length) bound it here.
+  double max_step = 0.0;
 };
 
 struct ProjectionResult {

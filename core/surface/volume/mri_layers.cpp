@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "core/io/nifti_volume.h"
@@ -22,6 +25,36 @@ double percentile(std::vector<float>& values, double fraction) {
   return values[k];
 }
 
+// A mask file on the volume's grid: the same dimensions and the same voxel placement (to
+// 1e-3 mm), else the mask would be read in another space.
+MaskVolume read_mask(const std::filesystem::path& path, const VoxelGrid& volume_grid) {
+  if (!std::filesystem::is_regular_file(path))
+    throw std::invalid_argument("mask '" + path.string() +
+                                "' is not a readable file (--mask takes a NIfTI .nii or .nii.gz "
+                                "file on the volume's grid)");
+  NiftiVolume file;
+  try {
+    file = read_nifti_volume(path);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument("mask: " + std::string(e.what()));
+  }
+  const VoxelGrid& g = file.volume.grid;
+  const double tolerance = 1e-3;
+  if (g.dims != volume_grid.dims || !g.linear.isApprox(volume_grid.linear, tolerance) ||
+      (g.offset - volume_grid.offset).norm() > tolerance) {
+    std::ostringstream s;
+    s << "mask '" << path.string() << "' is not on the volume's grid (dimensions " << g.dims[0]
+      << "x" << g.dims[1] << "x" << g.dims[2] << " vs " << volume_grid.dims[0] << "x"
+      << volume_grid.dims[1] << "x" << volume_grid.dims[2]
+      << ", or another voxel placement); resample it to the volume first";
+    throw std::invalid_argument(s.str());
+  }
+  MaskVolume mask(g, 0);
+  for (std::size_t v = 0; v < mask.values.size(); ++v)
+    mask.values[v] = file.volume.values[v] != 0.0f ? 1 : 0;
+  return mask;
+}
+
 }  // namespace
 
 MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallback& progress) {
@@ -29,16 +62,22 @@ MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallba
   report(progress, "reading", 0.0);
   NiftiVolume file =
       read_nifti_volume(options.volume_path, [&](double f) { report(progress, "reading", f); });
+  std::optional<MaskVolume> mask;
+  if (!options.mask_path.empty()) mask = read_mask(options.mask_path, file.volume.grid);
   const double read_seconds = seconds_since(start);
-  MriLayers layers = from_intensity(std::move(file.volume), options, progress);
+  MriLayers layers = from_intensity(std::move(file.volume), options, progress, std::move(mask));
   layers.timings_.read = read_seconds;
   layers.source_ = options.volume_path.string();
   return layers;
 }
 
 MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptions& options,
-                                    const ProgressCallback& progress) {
+                                    const ProgressCallback& progress,
+                                    std::optional<MaskVolume> mask) {
   MriLayers layers;
+  if (mask && mask->grid.dims != intensity.grid.dims)
+    throw std::invalid_argument("the mask's grid differs from the volume's");
+  layers.given_mask_ = std::move(mask);
   layers.options_ = options;
   layers.source_ = "(memory)";
   layers.intensity_ = std::move(intensity);
@@ -57,7 +96,8 @@ void MriLayers::set_threshold(double threshold, const ProgressCallback& progress
 
 void MriLayers::resegment(const ProgressCallback& progress) {
   auto start = std::chrono::steady_clock::now();
-  segmentation_ = segment_volume(intensity_, options_.segmentation, progress);
+  segmentation_ = given_mask_ ? segment_mask(*given_mask_, options_.segmentation, progress)
+                              : segment_volume(intensity_, options_.segmentation, progress);
   timings_.segment = seconds_since(start);
   start = std::chrono::steady_clock::now();
   ScalarVolume indicator(segmentation_.mask.grid, 0.0f);

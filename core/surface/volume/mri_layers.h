@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/surface/volume/bspline_field.h"
@@ -19,11 +20,29 @@ inline constexpr const char* kDefaultMriVolume = "/usr/share/mricron/templates/c
 
 struct MriLayersOptions {
   std::filesystem::path volume_path = kDefaultMriVolume;
+  // A brain mask on the volume's grid (nonzero = brain), used instead of the threshold;
+  // empty: the built-in segmentation.
+  std::filesystem::path mask_path;
   // Otsu's threshold after 1 mm smoothing, and a 5 mm closing: measured on Colin27, the raw
   // mask's isolayers have handles and islands (sulci, open ventricles) at most depths, while
   // after a 5 mm closing every layer from 0 to 20 mm is one solid without holes.
-  SegmentationOptions segmentation{
-      .smoothing_sigma_mm = 1.0, .threshold = 0.0, .closing_radius_mm = 5.0};
+  SegmentationOptions segmentation{.smoothing_sigma_mm = 1.0,
+                                   .threshold = 0.0,
+                                   // 3 mm: parts left by a 2 mm opening (4 mm thick)
+                                   // become sub-millimetre tongues under the two 1.5 mm
+                                   // blurs below, 1-2 mm from the layer (the optic chiasm
+                                   // on Colin27 at 1.1 mm voxels); split vertices were
+                                   // projected onto them and refinement ran away.
+                                   .opening_radius_mm = 3.0,
+                                   .closing_radius_mm = 5.0,
+                                   // A neck's cross-section is ~100 cm^2; a brain cropped
+                                   // tightly may graze the border (ch2better: 1 cm^2).
+                                   .max_border_contact_mm2 = 1000.0,
+                                   // A macaque brain (inia19) holds 0.1 L, a human one 1-1.8
+                                   // L; the upper limit admits Colin27 with its header set
+                                   // to 2 mm voxels (13.6 L, the voxel-size tests).
+                                   .min_volume_ml = 10.0,
+                                   .max_volume_ml = 20000.0};
   // The distance is measured to the 1/2 level of the mask blurred by `boundary_smoothing_mm`
   // (sub-voxel, instead of the voxel staircase), then blurred by `distance_smoothing_mm`
   // before the B-spline. Measured on a NIfTI ball of radius 20 mm with 0.9-1.2 mm voxels
@@ -47,9 +66,13 @@ class MriLayers {
   // are reported through `progress`. Throws std::runtime_error (unreadable file) or
   // std::invalid_argument (nothing segmented).
   static MriLayers build(const MriLayersOptions& options, const ProgressCallback& progress = {});
-  // From an intensity volume already in memory (tests, other readers); volume_path unused.
+  // From an intensity volume already in memory (tests, other readers); volume_path and
+  // mask_path unused; `mask` (same grid, nonzero = brain), when given, replaces the threshold.
   static MriLayers from_intensity(ScalarVolume intensity, const MriLayersOptions& options,
-                                  const ProgressCallback& progress = {});
+                                  const ProgressCallback& progress = {},
+                                  std::optional<MaskVolume> mask = std::nullopt);
+  // Whether the brain comes from a given mask (then the threshold is unused).
+  bool mask_given() const { return given_mask_.has_value(); }
 
   // Re-segments with another threshold (<= 0: Otsu) and recomputes the distance.
   void set_threshold(double threshold, const ProgressCallback& progress = {});
@@ -88,6 +111,7 @@ class MriLayers {
   MriLayersOptions options_;
   std::string source_;
   ScalarVolume intensity_;
+  std::optional<MaskVolume> given_mask_;
   Segmentation segmentation_;
   CubicBSplineField distance_;
   TrilinearSampler sampler_;

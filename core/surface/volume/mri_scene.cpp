@@ -10,6 +10,7 @@ namespace dynamesh {
 namespace {
 
 constexpr const char* kVolumeOption = "volume";
+constexpr const char* kMaskOption = "mask";
 
 // The numbers the builder itself uses: building with the segmentation threshold avoids
 // segmenting and transforming twice. Out-of-range values are left to make_scene, whose
@@ -26,9 +27,14 @@ std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
   MriOptions options;
   bool volume_given = false;
   for (const auto& [key, value] : request.text_options) {
+    if (key == kMaskOption) {
+      options.mask_path = value;
+      continue;
+    }
     if (key != kVolumeOption) {
       throw std::invalid_argument("mri: unknown option '" + key +
-                                  "' (its only option is the volume: --volume FILE.nii[.gz])");
+                                  "' (its options are --volume FILE.nii[.gz] and --mask "
+                                  "FILE.nii[.gz])");
     }
     options.volume_path = value;
     volume_given = true;

@@ -4,18 +4,17 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/surface/box_base_mesh.h"
 #include "core/surface/parameter_table.h"
+#include "core/surface/volume/cuberille_base_mesh.h"
 
 namespace dynamesh {
 namespace {
 
 constexpr double kBoundsMargin = 2.0;  // mm
-// mm. Newton projection of a split midpoint lands on the nearest sheet of the layer, so a
-// base face that spans a fold (between temporal lobe and cerebellum) keeps projecting its
-// midpoints onto one ridge: measured on Colin27 at T = 0.5 mm, 40 mm quads refined there
-// into degenerate triangles without end, 20 mm quads adapt to about 7,500 triangles.
-constexpr double kBaseQuadSize = 20.0;
+// mm, cells of the cuberille base (cuberille_base_mesh.h). Measured on Colin27 with its
+// header rewritten (see /work/notes/issue-14.md): 8 mm adapts 0.8-1.05, 1.5 mm, 1x1x1.2,
+// oblique; 1.1 and 2 mm still refine without end; 5 mm passed those two but failed others.
+constexpr double kBaseCellSize = 8.0;
 
 }  // namespace
 
@@ -94,19 +93,9 @@ Vec3 MriSurface::first_crossing(const Vec3& origin, const Vec3& direction) const
 }
 
 Mesh48 MriSurface::base_mesh() const {
-  const Box3 box = layers_.mask_bounds();
-  std::array<int, 3> counts;
-  for (int i = 0; i < 3; ++i) {
-    counts[i] = std::clamp(static_cast<int>(std::lround(box.size()[i] / kBaseQuadSize)), 2, 16);
-  }
-  const Vec3 centre = layers_.deepest_point();
-  // The box is centred on the deepest point so the rays fan out evenly.
-  Box3 around;
-  around.extend(centre - 0.5 * box.size());
-  around.extend(centre + 0.5 * box.size());
-  return make_projected_box_mesh(*this, around, counts, [&](const Vec3& corner) {
-    return first_crossing(centre, (corner - centre).normalized());
-  });
+  CuberilleOptions options;
+  options.cell_size = kBaseCellSize;
+  return make_cuberille_base_mesh(*this, bounds(), options);
 }
 
 std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
@@ -116,6 +105,7 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   }
   MriLayersOptions layer_options;
   layer_options.volume_path = options.volume_path;
+  layer_options.mask_path = options.mask_path;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),

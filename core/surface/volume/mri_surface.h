@@ -17,8 +17,9 @@ namespace dynamesh {
 
 struct MriOptions {
   std::filesystem::path volume_path = kDefaultMriVolume;
-  double threshold = 0.0;   // segmentation threshold (intensity); 0 or negative: Otsu
-  double depth_max = 15.0;  // mm, depth of the layer at t = 1
+  std::filesystem::path mask_path;  // --mask: a brain mask on the volume's grid; empty: none
+  double threshold = 0.0;           // segmentation threshold (intensity); 0 or negative: Otsu
+  double depth_max = 15.0;          // mm, depth of the layer at t = 1
   double closing_radius_mm = 5.0;
   ProgressCallback progress;  // loading / segmenting / distance transform, also on re-segmenting
 };

@@ -1,6 +1,8 @@
 #include "core/surface/volume/segmentation.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +24,71 @@ MaskVolume threshold_mask(const ScalarVolume& smoothed, double threshold) {
   return mask;
 }
 
+// Area of the mask's voxel faces on the volume's six sides, in mm^2.
+double border_contact_mm2(const MaskVolume& mask) {
+  const auto& n = mask.grid.dims;
+  const Vec3 h = mask.grid.spacing();
+  const double face[3] = {h[1] * h[2], h[0] * h[2], h[0] * h[1]};  // normal along i, j, k
+  double area = 0.0;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        if (!mask.at(i, j, k)) continue;
+        area += face[0] * ((i == 0) + (i == n[0] - 1)) + face[1] * ((j == 0) + (j == n[1] - 1)) +
+                face[2] * ((k == 0) + (k == n[2] - 1));
+      }
+  return area;
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s << std::setprecision(3) << x;
+  return s.str();
+}
+
+constexpr const char* kHint =
+    "; is this a skull-stripped brain? pass a brain mask with --mask FILE (e.g. from FSL BET "
+    "or SynthStrip)";
+
+void check_plausible(const MaskVolume& mask, const SegmentationOptions& o) {
+  if (o.max_border_contact_mm2 > 0.0) {
+    const double contact = border_contact_mm2(mask);
+    if (contact > o.max_border_contact_mm2)
+      throw std::invalid_argument(
+          "segmentation: the brain component touches the volume's border "
+          "over " +
+          number(contact / 100.0) + " cm^2 (at most " + number(o.max_border_contact_mm2 / 100.0) +
+          ")" + kHint);
+  }
+  const double ml = static_cast<double>(std::count(mask.values.begin(), mask.values.end(), 1)) *
+                    mask.grid.voxel_volume() / 1000.0;
+  if ((o.min_volume_ml > 0.0 && ml < o.min_volume_ml) ||
+      (o.max_volume_ml > 0.0 && ml > o.max_volume_ml))
+    throw std::invalid_argument("segmentation: the brain component holds " + number(ml) +
+                                " ml, outside the plausible " + number(o.min_volume_ml) + "-" +
+                                number(o.max_volume_ml) + " ml" + kHint);
+}
+
+Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
+                        const ProgressCallback& progress, const std::string& where) {
+  Segmentation s;
+  s.mask = std::move(mask);
+  report(progress, kStage, 0.4);
+  open_mask(s.mask, options.opening_radius_mm);
+  s.components = keep_largest_component(s.mask);
+  if (s.components == 0)
+    throw std::invalid_argument("segmentation: no voxel" + where + " is left by the " +
+                                number(options.opening_radius_mm) + " mm opening" + kHint);
+  check_plausible(s.mask, options);
+  report(progress, kStage, 0.5);
+  close_mask(s.mask, options.closing_radius_mm);
+  report(progress, kStage, 0.8);
+  s.holes_filled = fill_holes(s.mask);
+  s.voxels = static_cast<std::size_t>(std::count(s.mask.values.begin(), s.mask.values.end(), 1));
+  report(progress, kStage, 1.0);
+  return s;
+}
+
 }  // namespace
 
 void close_mask(MaskVolume& mask, double radius_mm) {
@@ -37,28 +104,38 @@ void close_mask(MaskVolume& mask, double radius_mm) {
   }
 }
 
+void open_mask(MaskVolume& mask, double radius_mm) {
+  if (!(radius_mm > 0.0)) return;
+  const float r2 = static_cast<float>(radius_mm * radius_mm);
+  const DistanceTransformResult to_outside = distance_transform(mask, 0);
+  for (std::size_t v = 0; v < mask.values.size(); ++v) {
+    if (mask.values[v] && to_outside.squared[v] <= r2) mask.values[v] = 0;
+  }
+  const DistanceTransformResult to_inside = distance_transform(mask, 1);
+  for (std::size_t v = 0; v < mask.values.size(); ++v) {
+    mask.values[v] = to_inside.squared[v] <= r2 ? 1 : 0;
+  }
+}
+
 Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOptions& options,
                             const ProgressCallback& progress) {
-  Segmentation s;
   report(progress, kStage, 0.0);
   const ScalarVolume smoothed = gaussian_smoothed(intensity, options.smoothing_sigma_mm);
   report(progress, kStage, 0.3);
-  s.otsu = !(options.threshold > 0.0);
-  s.threshold = s.otsu ? otsu_threshold(smoothed.values) : options.threshold;
-  s.mask = threshold_mask(smoothed, s.threshold);
-  report(progress, kStage, 0.4);
-  s.components = keep_largest_component(s.mask);
-  if (s.components == 0) {
-    throw std::invalid_argument("segmentation: no voxel above the threshold " +
-                                std::to_string(s.threshold));
-  }
-  report(progress, kStage, 0.5);
-  close_mask(s.mask, options.closing_radius_mm);
-  report(progress, kStage, 0.8);
-  s.holes_filled = fill_holes(s.mask);
-  s.voxels = static_cast<std::size_t>(std::count(s.mask.values.begin(), s.mask.values.end(), 1));
-  report(progress, kStage, 1.0);
+  const bool otsu = !(options.threshold > 0.0);
+  const double threshold = otsu ? otsu_threshold(smoothed.values) : options.threshold;
+  Segmentation s = clean_mask(threshold_mask(smoothed, threshold), options, progress,
+                              " above the threshold " + std::to_string(threshold));
+  s.otsu = otsu;
+  s.threshold = threshold;
   return s;
+}
+
+Segmentation segment_mask(MaskVolume mask, const SegmentationOptions& options,
+                          const ProgressCallback& progress) {
+  report(progress, kStage, 0.0);
+  for (std::uint8_t& v : mask.values) v = v ? 1 : 0;
+  return clean_mask(std::move(mask), options, progress, " in the mask");
 }
 
 }  // namespace dynamesh
