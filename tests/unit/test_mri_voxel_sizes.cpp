@@ -77,31 +77,22 @@ std::filesystem::path rescaled_brain(const std::filesystem::path& dir, const Vec
   return path;
 }
 
-double area_of_ply(const test::PlyData& ply) {
-  double area = 0.0;
-  for (const auto& f : ply.faces) {
-    Vec3 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
-    area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-  }
-  return area;
-}
-
-double volume_of_ply(const test::PlyData& ply) {
-  double volume = 0.0;
-  for (const auto& f : ply.faces) {
-    Vec3 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
-    volume += p[0].dot(p[1].cross(p[2])) / 6.0;
-  }
-  return volume;
-}
-
 struct Layer {
   double area = 0.0, volume = 0.0;
 };
+
+// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass.
+Layer measure_ply(const test::PlyData& ply) {
+  Layer layer;
+  for (const auto& f : ply.faces) {
+    Vec3 p[3];
+    for (int i = 0; i < 3; ++i)
+      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
+    layer.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    layer.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+  }
+  return layer;
+}
 
 // The layer at depth 0 of `volume` (plus `extra` options), judged closed and embedded.
 Layer layer_of(const std::filesystem::path& volume, const std::string& name,
@@ -119,8 +110,7 @@ Layer layer_of(const std::filesystem::path& volume, const std::string& name,
   EXPECT_LE(run["max_sample_error"], 0.5 * 1.25 * 1.1) << name;  // T + eps, 10% sampling slack
   const test::MeshValidity v = test::check_mesh_validity_of_file(mesh);
   EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
-  const test::PlyData ply = test::read_ply(mesh);
-  return {area_of_ply(ply), volume_of_ply(ply)};
+  return measure_ply(test::read_ply(mesh));
 }
 
 TEST(MriVoxelSizes, Colin27AtOtherVoxelSizesGivesTheSameLayerScaled) {
