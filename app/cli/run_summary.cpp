@@ -33,6 +33,7 @@ void RunSummary::add(const StepStats& s) {
   }
   topology_events.insert(topology_events.end(), s.topology_events.begin(), s.topology_events.end());
   rebuilds += s.rebuilt;
+  local_repairs += s.local_repairs;
 }
 
 std::string to_json(const RunSummary& s) {
@@ -63,7 +64,7 @@ std::string to_json(const RunSummary& s) {
   for (std::size_t i = 0; i < s.keyframe_triangles.size(); ++i)
     out << (i ? "," : "") << s.keyframe_triangles[i];
   out << "]"
-      << ",\"rebuilds\":" << s.rebuilds << ",\"topology_events\":[";
+      << ",\"rebuilds\":" << s.rebuilds << ",\"local_repairs\":" << s.local_repairs << ",\"topology_events\":[";
   for (std::size_t i = 0; i < s.topology_events.size(); ++i) {
     const TopologyEvent& e = s.topology_events[i];
     out << (i ? "," : "") << "{\"time\":" << number(e.time) << ",\"kind\":\"" << to_string(e.kind)

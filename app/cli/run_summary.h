@@ -32,6 +32,7 @@ struct RunSummary {
   void add(const StepStats& s);
   std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
   std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
+  std::size_t local_repairs = 0;  // events repaired locally (in steps not rebuilt)
 };
 
 std::string to_json(const RunSummary& s);

@@ -266,7 +266,10 @@ void Adapter::publish_repaired() {
 }
 
 void Adapter::rebuild_from_base() {
-  // As initialize() does, but within a step: every vertex is born now (none survives).
+  // As initialize() does, but within a step: every vertex is born now (none survives), local
+  // repairs of this step included.
+  stats_.local_repairs = 0;
+  stats_.repair_faces_replaced = 0;
   mesh_ = surface_.base_mesh();
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
@@ -275,6 +278,17 @@ void Adapter::rebuild_from_base() {
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
   if (options_.structural) split_pass(true);
+}
+
+void Adapter::adopt_repair(const std::vector<Vertex>& born) {
+  // The mesh told no listener about the surgery (Mesh48::replace_region): the new vertices
+  // are born now, every face is looked at again and its samples drawn afresh (the sampling
+  // that follows in this step measures them all).
+  tracker_->grow(mesh_);
+  for (const Vertex v : born) tracker_->birth_step[v.idx] = step_;
+  for (const Face f : mesh_.live_faces()) tracker_->touch(f);
+  samples_.reset(mesh_);
+  predictor_.invalidate();
 }
 
 bool Adapter::surface_changed() {

@@ -30,6 +30,7 @@
 namespace dynamesh {
 
 class TopologyMonitor;
+struct TopologyCheck;
 
 // Per-vertex fields a snapshot can carry (each costs time; curvature the most).
 struct SnapshotFields {
@@ -117,10 +118,15 @@ class Adapter {
   void finish_stats();
   void record_rest_points();
   // Topology change (issue 16, topology_events.h): starts watching F when the surface may
-  // change topology; each step, reports F's events and rebuilds the mesh from F's contour when
-  // its topology no longer matches (a global re-base: no vertex survives it).
+  // change topology; each step, reports F's events and, when the mesh's topology no longer
+  // matches F's, repairs it locally around each event (local_repair.h) or, when that fails,
+  // rebuilds the mesh from F's contour (a global re-base: no vertex survives it).
   void watch_topology();
   void check_topology();
+  // True when the local repairs leave the mesh with the contour's topology.
+  bool repair_topology_locally(const TopologyCheck& check);
+  // After a local repair: the stores follow the mesh's surgery; `born` are its new vertices.
+  void adopt_repair(const std::vector<Vertex>& born);
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
   // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
   void rebuild_if_folded();

@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "core/adapt/adapter.h"
+#include "core/topology/local_repair.h"
 #include "core/topology/topology_events.h"
 
 namespace dynamesh {
@@ -21,14 +22,41 @@ void Adapter::check_topology() {
                                 check.events.end());
   stats_.topology_seconds += check.seconds;
   if (!check.rebase) return;
-  // No local repair: the whole mesh is rebuilt from F's contour at this time (a global
-  // re-base), which the split pass then refines like a first mesh.
+  // Locally first; when that cannot be done the whole mesh is rebuilt from F's contour at this
+  // time (a global re-base), which the split pass then refines like a first mesh.
   const auto start = std::chrono::steady_clock::now();
-  rebuild_from_base();
+  if (!repair_topology_locally(check)) {
+    rebuild_from_base();
+    stats_.rebuilt = true;
+  }
   topology_->mesh_rebuilt(mesh_);
-  stats_.rebuilt = true;
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool Adapter::repair_topology_locally(const TopologyCheck& check) {
+  const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
+  // The cut reaches two cells of the watching grid around the critical point (the mesh is
+  // wrong within about one: the event happened since the last step), the patch is contoured
+  // at half a cell.
+  LocalRepairOptions o;
+  o.radius = 2.0 * topology_->spacing();
+  o.spacing = 0.5 * topology_->spacing();
+  std::size_t repaired = 0;
+  for (const TopologyEvent& e : check.events) {
+    if (e.kind == TopologyEventKind::kMismatch) return false;  // not located
+    const LocalRepairResult r = repair_locally(mesh_, implicit, e.position, o);
+    if (!r.repaired) {
+      stats_.repair_refusals.push_back(r.why_not);
+      continue;
+    }
+    ++repaired;
+    stats_.repair_faces_replaced += r.removed_faces;
+    adopt_repair(r.new_vertices);
+  }
+  if (repaired == 0) return false;
+  stats_.local_repairs += repaired;
+  return summarize_topology(mesh_) == check.contour;
 }
 
 void Adapter::rebuild_if_folded() {

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/topology/topology_event.h"
@@ -48,9 +49,14 @@ struct StepStats {
   bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
   bool time_budget_hit = false;    // ... at AdaptOptions::deadline
   // Topology (issue 16; surfaces that may change topology): events found from F during the
-  // step, whether the mesh was rebuilt from F's contour (no vertex survives a rebuild), and
-  // what watching cost (seconds; also counted in seconds.project).
+  // step, how many were repaired locally (local_repair.h: only faces near the event are
+  // replaced), whether the mesh was instead rebuilt from F's contour (the fallback: no vertex
+  // survives a rebuild), and what watching and repairing cost (seconds; also in
+  // seconds.project).
   std::vector<TopologyEvent> topology_events;
+  std::size_t local_repairs = 0;
+  std::size_t repair_faces_replaced = 0;  // faces the local repairs cut out
+  std::vector<std::string> repair_refusals;  // why a local repair was not done
   bool rebuilt = false;
   std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
   double topology_seconds = 0.0;

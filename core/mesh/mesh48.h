@@ -157,6 +157,26 @@ class Mesh48 {
   // children and the parent triangle's vertices) and returns true when v can be welded.
   bool plan_weld(Vertex v, DiamondChange& change) const;
 
+  // --- surgery (issue 16, local repair of a topology change) -----------------------------
+  // Replaces the faces `removed` by `triangles`, given newest vertex first over the vertices
+  // `corners` (an index i < existing.size() is the live vertex existing[i], otherwise the new
+  // vertex made at positions[i - existing.size()]). The new triangles must close the hole
+  // exactly (each of their unshared edges is the reverse of an edge of a remaining face whose
+  // neighbour was removed) and be paired: among themselves, or, across the border, with a
+  // remaining face whose refinement edge is that edge and whose depth is theirs (`depths`,
+  // one per triangle; empty means all 0). Vertices used by no
+  // face any more die; vertices on the border, and those whose parents died, become base
+  // vertices (their welds would restore edges that no longer exist). No listener is told:
+  // the caller re-synchronises what it keeps per element. Returns the new vertices' ids.
+  // Throws std::logic_error when the triangles do not close the hole as described (the mesh
+  // is then unchanged) or leave a vertex with two fans (found afterwards: the mesh is then
+  // unusable, so keep a copy).
+  std::vector<Vertex> replace_region(const std::vector<Face>& removed,
+                                     const std::vector<Vertex>& existing,
+                                     const std::vector<Vec3>& positions,
+                                     const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                     const std::vector<int>& depths = {});
+
   // --- listeners -------------------------------------------------------------------------
   void add_listener(MeshListener* listener);
   void remove_listener(MeshListener* listener);

@@ -13,54 +13,12 @@ namespace dynamesh {
 
 namespace {
 
-using Triangle = std::array<std::uint32_t, 3>;
-
-// Local index i of f's edge (f[i+1], f[i+2]) that g has reversed.
-int shared_edge(const Triangle& f, const Triangle& g) {
-  for (int i = 0; i < 3; ++i) {
-    const std::uint32_t a = f[(i + 1) % 3], b = f[(i + 2) % 3];
-    for (int j = 0; j < 3; ++j)
-      if (g[j] == b && g[(j + 1) % 3] == a) return i;
-  }
-  return -1;
-}
-
-// Each pair's shared edge becomes the refinement edge of both: (apex, a, b) with (a, b) shared.
-Mesh48 paired_mesh(std::vector<Vec3> positions, const std::vector<Triangle>& triangles,
+// Each pair's shared edge becomes the refinement edge of both.
+Mesh48 paired_mesh(std::vector<Vec3> positions,
+                   const std::vector<std::array<std::uint32_t, 3>>& triangles,
                    const std::vector<std::int64_t>& partner) {
-  std::vector<Triangle> rotated(triangles.size());
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    const Triangle& t = triangles[f];
-    const int i = shared_edge(t, triangles[static_cast<std::size_t>(partner[f])]);
-    if (i < 0) throw std::logic_error("contour: paired triangles share no edge");
-    rotated[f] = {t[i], t[(i + 1) % 3], t[(i + 2) % 3]};
-  }
-  return Mesh48::from_base_triangles(std::move(positions), {}, rotated);
-}
-
-// The zero of F on the grid edge (inside, outside), by regula falsi with the Illinois fix, kept
-// at least `margin` from either end: a point of the surface that belongs to this edge, unlike
-// one found by Newton steps, which near a critical point of F may run off to another sheet.
-Vec3 edge_root(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin) {
-  double a = 0.0, b = 1.0;
-  double fa = surface.value(edge[0]), fb = surface.value(edge[1]);
-  int side = 0;
-  for (int i = 0; i < 40 && fa < 0 && fb >= 0; ++i) {
-    const double s = (a * fb - b * fa) / (fb - fa);
-    const double fs = surface.value((1 - s) * edge[0] + s * edge[1]);
-    if (fs < 0) {
-      a = s, fa = fs;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    } else {
-      b = s, fb = fs;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    }
-    if (b - a < 1e-12) break;
-  }
-  const double s = std::clamp(0.5 * (a + b), margin, 1.0 - margin);
-  return (1 - s) * edge[0] + s * edge[1];
+  return Mesh48::from_base_triangles(std::move(positions), {},
+                                     refinement_edge_first(triangles, partner));
 }
 
 }  // namespace
@@ -79,7 +37,7 @@ Mesh48 make_contour_base_mesh(const ImplicitSurface& surface, const ContourBaseO
   std::vector<Vec3> positions = contour.positions;
   constexpr double kMargin = 0.05;
   for (std::size_t i = 0; i < positions.size(); ++i)
-    positions[i] = edge_root(surface, contour.edges[i], kMargin);
+    positions[i] = root_on_edge(surface, contour.edges[i], kMargin);
   const std::vector<std::int64_t> partner = pair_triangles(positions, contour.triangles);
   std::size_t unpaired = 0;
   for (const std::int64_t p : partner) unpaired += p < 0;

@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-
 namespace dynamesh {
 
 namespace {
@@ -149,7 +148,7 @@ std::vector<double> sample_grid(const ImplicitSurface& surface, const ContourGri
 }
 
 ContourMesh marching_tetrahedra(const ContourGrid& grid, const std::vector<double>& values,
-                                double margin) {
+                                double margin, bool open) {
   const auto [nx, ny, nz] = grid.cells;
   if (values.size() != static_cast<std::size_t>(nx + 1) * (ny + 1) * (nz + 1))
     throw std::invalid_argument("contour: value count does not match the grid");
@@ -160,11 +159,33 @@ ContourMesh marching_tetrahedra(const ContourGrid& grid, const std::vector<doubl
         const double f = values[(static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i];
         if (!std::isfinite(f))
           throw std::invalid_argument("contour: F is not finite at a grid point");
-        if (side && f < 0)
+        if (side && f < 0 && !open)
           throw std::invalid_argument(
               "the surface is not inside its bounds: F < 0 on the bounding box's side");
       }
   return Extractor(grid, values, margin).run();
+}
+
+Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin) {
+  double a = 0.0, b = 1.0;
+  double fa = surface.value(edge[0]), fb = surface.value(edge[1]);
+  int side = 0;
+  for (int i = 0; i < 40 && fa < 0 && fb >= 0; ++i) {
+    const double s = (a * fb - b * fa) / (fb - fa);
+    const double fs = surface.value((1 - s) * edge[0] + s * edge[1]);
+    if (fs < 0) {
+      a = s, fa = fs;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = s, fb = fs;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+    if (b - a < 1e-12) break;
+  }
+  const double s = std::clamp(0.5 * (a + b), margin, 1.0 - margin);
+  return (1 - s) * edge[0] + s * edge[1];
 }
 
 }  // namespace dynamesh

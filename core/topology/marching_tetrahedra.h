@@ -42,8 +42,15 @@ std::vector<double> sample_grid(const ImplicitSurface& surface, const ContourGri
 // The zero set of the sampled values (size (cells+1)^3, x fastest). A crossing is placed by
 // linear interpolation, kept at least `margin` (a fraction of the edge) from either end so that
 // no triangle is degenerate before projection. Throws std::invalid_argument when F < 0 at a
-// grid point on the box's sides (the contour would be open there).
+// grid point on the box's sides (the contour would be open there), unless `open` is set: a
+// local contour (the local repair's patch) may end at the box's sides.
 ContourMesh marching_tetrahedra(const ContourGrid& grid, const std::vector<double>& values,
-                                double margin = 0.05);
+                                double margin = 0.05, bool open = false);
+
+// The zero of F on a contour vertex's grid edge (inside, outside), by regula falsi with the
+// Illinois fix, kept at least `margin` (a fraction of the edge) from either end: a point of
+// the surface that belongs to this edge, unlike one found by Newton steps, which near a
+// critical point of F may run off to another sheet.
+Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin);
 
 }  // namespace dynamesh

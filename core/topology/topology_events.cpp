@@ -101,6 +101,7 @@ ContourGrid TopologyMonitor::grid_for(const ImplicitSurface& surface) const {
 
 void TopologyMonitor::reset(const ImplicitSurface& surface, const Mesh48& mesh) {
   const ContourGrid grid = grid_for(surface);
+  spacing_ = grid.spacing().maxCoeff();
   previous_ = find_critical_points(surface, grid, sample_field(surface, grid), HUGE_VAL);
   previous_time_ = surface.time();
   mesh_topology_ = summarize_topology(mesh);
@@ -110,6 +111,7 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   const auto start = std::chrono::steady_clock::now();
   TopologyCheck out;
   const ContourGrid grid = grid_for(surface);
+  spacing_ = grid.spacing().maxCoeff();
   const GridField field = sample_field(surface, grid);
   std::vector<CriticalPoint> now = find_critical_points(surface, grid, field, HUGE_VAL);
   const double t0 = previous_time_, t1 = surface.time();

@@ -53,6 +53,8 @@ class TopologyMonitor {
   TopologyCheck check(const ImplicitSurface& surface);
   // The mesh was rebuilt after a check() (its critical points are already current).
   void mesh_rebuilt(const Mesh48& mesh) { mesh_topology_ = summarize_topology(mesh); }
+  // The watching grid's spacing (its largest cell side) at the last reset() or check().
+  double spacing() const { return spacing_; }
 
  private:
   ContourGrid grid_for(const ImplicitSurface& surface) const;
@@ -61,6 +63,7 @@ class TopologyMonitor {
   std::vector<CriticalPoint> previous_;
   double previous_time_ = 0.0;
   MeshTopologySummary mesh_topology_;
+  double spacing_ = 0.0;
 };
 
 }  // namespace dynamesh

@@ -74,4 +74,32 @@ std::vector<std::int64_t> pair_triangles(
   return partner;
 }
 
+namespace {
+
+// Local index i of f's edge (f[i+1], f[i+2]) that g has reversed.
+int shared_edge(const std::array<std::uint32_t, 3>& f, const std::array<std::uint32_t, 3>& g) {
+  for (int i = 0; i < 3; ++i) {
+    const std::uint32_t a = f[(i + 1) % 3], b = f[(i + 2) % 3];
+    for (int j = 0; j < 3; ++j)
+      if (g[j] == b && g[(j + 1) % 3] == a) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::vector<std::array<std::uint32_t, 3>> refinement_edge_first(
+    const std::vector<std::array<std::uint32_t, 3>>& triangles,
+    const std::vector<std::int64_t>& partner) {
+  std::vector<std::array<std::uint32_t, 3>> rotated(triangles.size());
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const auto& t = triangles[f];
+    const int i =
+        partner[f] < 0 ? -1 : shared_edge(t, triangles[static_cast<std::size_t>(partner[f])]);
+    if (i < 0) throw std::logic_error("pairing: a triangle shares no edge with its partner");
+    rotated[f] = {t[i], t[(i + 1) % 3], t[(i + 2) % 3]};
+  }
+  return rotated;
+}
+
 }  // namespace dynamesh

@@ -22,4 +22,11 @@ namespace dynamesh {
 std::vector<std::int64_t> pair_triangles(
     const std::vector<Vec3>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles);
 
+// The triangles rotated newest vertex first, (apex, a, b), so that the edge (a, b) each shares
+// with its partner is its refinement edge (Mesh48::from_base_triangles' convention). Every
+// triangle must have a partner.
+std::vector<std::array<std::uint32_t, 3>> refinement_edge_first(
+    const std::vector<std::array<std::uint32_t, 3>>& triangles,
+    const std::vector<std::int64_t>& partner);
+
 }  // namespace dynamesh

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -86,6 +87,8 @@ Example torus_pinch_example(const std::string& name, const std::string& weight,
 }
 
 struct RunFigures {
+  int rebuilds = 0;       // steps that fell back to a global re-base
+  int local_repairs = 0;  // events repaired locally
   double mean_survival = 0;
   double worst_error_ratio = 0;
   int judged_frames = 0;
@@ -104,6 +107,10 @@ RunFigures run_and_judge(const Example& ex) {
     const StepStats& s = i == 0 ? adapter.initialize() : adapter.step(t);
     const std::string frame = ex.name + " frame " + std::to_string(i) + " t=" + std::to_string(t);
     if (i > 0) survival += s.kept_fraction;
+    fig.rebuilds += s.rebuilt;
+    fig.local_repairs += static_cast<int>(s.local_repairs);
+    for (const std::string& why : s.repair_refusals)
+      ADD_FAILURE() << frame << ": no local repair: " << why;
     fig.events.insert(fig.events.end(), s.topology_events.begin(), s.topology_events.end());
     const Mesh48& mesh = adapter.mesh();
     const CheckReport report = mesh.check();
@@ -136,6 +143,9 @@ RunFigures run_and_judge(const Example& ex) {
   }
   fig.mean_survival = survival / kSteps;
   EXPECT_GE(fig.mean_survival, 0.9) << ex.name;
+  // Every event repaired locally (local_repair.h), none by the global re-base fallback.
+  EXPECT_EQ(fig.rebuilds, 0) << ex.name;
+  EXPECT_EQ(fig.local_repairs, static_cast<int>(ex.events.size())) << ex.name;
 
   // Every true event reported within one step, with its kind; nothing else reported.
   const double step = 1.0 / kSteps;
@@ -151,9 +161,38 @@ RunFigures run_and_judge(const Example& ex) {
     EXPECT_TRUE(expected) << ex.name << ": unexpected " << to_string(r.kind) << " at t=" << r.time;
   }
   ::testing::Test::RecordProperty(ex.name + "_mean_survival", std::to_string(fig.mean_survival));
+  std::printf("%s: survival %.4f, worst error ratio %.3f, local repairs %d, rebuilds %d\n",
+              ex.name.c_str(), fig.mean_survival, fig.worst_error_ratio, fig.local_repairs,
+              fig.rebuilds);
   ::testing::Test::RecordProperty(ex.name + "_worst_error_ratio",
                                   std::to_string(fig.worst_error_ratio));
   return fig;
+}
+
+// Two Gaussian blobs of width s along an off-axis unit direction d, centres +-a(t) d with
+// a(t) = a0 + a1 (2t - 1)^2 (a formula, not the built-in scene): they touch when
+// 2 exp(-a^2 / s^2) = tau at the midpoint, a = s sqrt(ln(2 / tau)).
+Example diagonal_blobs_example() {
+  const double tau = 0.5, s2 = 0.2, a0 = 0.15, a1 = 0.9;
+  const double a = std::sqrt(s2 * std::log(2.0 / tau));
+  const double u = std::sqrt((a - a0) / a1);
+  const double t1 = 0.5 - 0.5 * u, t2 = 0.5 + 0.5 * u;
+  Example e;
+  e.name = "diagonal-blobs";
+  const std::string at = "(0.15+0.9*(2*t-1)^2)";
+  const auto blob = [&](const std::string& sign) {
+    return "exp(-((x" + sign + "0.6*" + at + ")^2+(y" + sign + "0.48*" + at + ")^2+(z" + sign +
+           "0.64*" + at + ")^2)/0.2)";
+  };
+  const std::string formula = "0.5 - " + blob("-") + " - " + blob("+");
+  e.make = [formula] {
+    return make_scene("expr", {}, {{"implicit", formula}, {"bounds", "-1.2,-1.1,-1.2,1.2,1.1,1.2"}});
+  };
+  e.events = {{t1, TopologyEventKind::kMerge}, {t2, TopologyEventKind::kSplit}};
+  e.topology = [t1, t2](double t) {
+    return t > t1 && t < t2 ? std::pair<long, long>{1, 2} : std::pair<long, long>{2, 4};
+  };
+  return e;
 }
 
 TEST(TopologyEvents, BlobsSaddleMatchesItsClosedForm) {
@@ -204,6 +243,12 @@ TEST(TopologyEvents, NarrowBlobsMergeEarlyAndLate) {
   p.a_near = 0.05;
   p.a_far = 0.8;
   const RunFigures fig = run_and_judge(blobs_example("narrow-blobs", p));
+  EXPECT_GE(fig.judged_frames, 30);
+}
+
+TEST(TopologyEvents, DiagonalBlobsMergeAndSeparate) {
+  // A hidden-variant style check: another width, another range of a(t), centres off every axis.
+  const RunFigures fig = run_and_judge(diagonal_blobs_example());
   EXPECT_GE(fig.judged_frames, 30);
 }
 

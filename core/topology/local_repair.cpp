@@ -1,0 +1,444 @@
+#include "core/topology/local_repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/surface/projection.h"
+#include "core/topology/marching_tetrahedra.h"
+#include "core/topology/triangle_pairing.h"
+
+namespace dynamesh {
+
+namespace {
+
+using Triangle = std::array<std::uint32_t, 3>;
+using Loop = std::vector<std::uint32_t>;  // vertex ids in the order of their halfedges
+
+// Loops of the directed edges (from -> to): empty when some vertex starts two of them (a
+// pinched border, two loops through one vertex).
+std::vector<Loop> loops_of(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  std::unordered_map<std::uint32_t, std::uint32_t> next;
+  for (const auto& [a, b] : edges)
+    if (!next.emplace(a, b).second) return {};
+  std::vector<Loop> loops;
+  std::unordered_map<std::uint32_t, char> seen;
+  for (const auto& [a, b] : edges) {
+    if (seen.count(a)) continue;
+    Loop loop;
+    std::uint32_t v = a;
+    while (!seen.count(v)) {
+      seen[v] = 1;
+      loop.push_back(v);
+      const auto it = next.find(v);
+      if (it == next.end()) return {};  // open: not a loop
+      v = it->second;
+    }
+    if (v != a) return {};
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// The faces to cut, closed so that no remaining face has its refinement edge on the border.
+void close_cut(const Mesh48& mesh, std::vector<char>& cut) {
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const Face f : mesh.live_faces()) {
+      if (cut[f.idx]) continue;
+      const Face across = mesh.neighbor(f, 0);
+      if (across.is_valid() && cut[across.idx]) cut[f.idx] = grew = 1;
+    }
+  }
+}
+
+// Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
+                                                               const std::vector<char>& cut) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const Face f : mesh.live_faces()) {
+    if (cut[f.idx]) continue;
+    for (int i = 0; i < 3; ++i) {
+      const Face across = mesh.neighbor(f, i);
+      if (!across.is_valid() || !cut[across.idx]) continue;
+      const Halfedge h(3 * f.idx + static_cast<std::uint32_t>(i));
+      edges.emplace_back(mesh.from_vertex(h).idx, mesh.to_vertex(h).idx);
+    }
+  }
+  return edges;
+}
+
+Vec3 centroid(const std::vector<Vec3>& positions, const Loop& loop) {
+  Vec3 c = Vec3::Zero();
+  for (const std::uint32_t v : loop) c += positions[v];
+  return c / static_cast<double>(loop.size());
+}
+
+// Zips the border loop `a` (halfedges a_k -> a_k+1 of remaining faces) to the patch loop `b`
+// (halfedges b_k -> b_k+1 of patch triangles): the strip holds every a_k+1 -> a_k and
+// b_k+1 -> b_k, walking `a` backwards and `b` forwards (the same way round) from their
+// nearest pair of vertices, each step advancing the loop that is behind in arc length (the
+// classic contour-stitching rule: the two loops differ in sampling, so shortest rungs alone
+// would fan one vertex over half the other loop).
+void zip(const std::vector<Vec3>& positions, const Loop& a, const Loop& b,
+         std::vector<Triangle>& out) {
+  const std::size_t na = a.size(), nb = b.size();
+  std::size_t i0 = 0, j0 = 0;
+  double best = HUGE_VAL;
+  for (std::size_t i = 0; i < na; ++i)
+    for (std::size_t j = 0; j < nb; ++j) {
+      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
+      if (d < best) best = d, i0 = i, j0 = j;
+    }
+  const auto A = [&](std::size_t s) { return a[(i0 + na - s % na) % na]; };  // backwards
+  const auto B = [&](std::size_t s) { return b[(j0 + s) % nb]; };
+  // How far round each loop each vertex is, as a fraction of the whole turn about the border
+  // loop's axis (its vector area) through its centroid: unlike arc length, the turn does not
+  // depend on how jagged or finely sampled a loop is. Arc length when a loop does not wind
+  // once about that axis.
+  Vec3 axis = Vec3::Zero(), centre = Vec3::Zero();
+  for (std::size_t i = 0; i < na; ++i) {
+    axis += positions[a[i]].cross(positions[a[(i + 1) % na]]);
+    centre += positions[a[i]];
+  }
+  centre /= static_cast<double>(na);
+  axis.normalize();
+  const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  const auto angle = [&](std::uint32_t v) {
+    const Vec3 d = positions[v] - centre;
+    return std::atan2(d.dot(e2), d.dot(e1));
+  };
+  const auto fractions = [&](std::size_t n, const auto& at) {
+    std::vector<double> f(n + 1, 0.0), length(n + 1, 0.0);
+    for (std::size_t s = 0; s < n; ++s) {
+      double d = angle(at(s + 1)) - angle(at(s));
+      d -= 2 * M_PI * std::round(d / (2 * M_PI));
+      f[s + 1] = f[s] + d;
+      length[s + 1] = length[s] + (positions[at(s + 1)] - positions[at(s)]).norm();
+    }
+    if (std::abs(std::abs(f[n]) - 2 * M_PI) > 0.5) {
+      for (std::size_t s = 0; s <= n; ++s) f[s] = length[s] / std::max(length[n], 1e-300);
+      return f;
+    }
+    const double total = f[n];
+    double high = 0;
+    for (double& x : f) x = high = std::clamp(std::max(high, x / total), 0.0, 1.0);
+    return f;
+  };
+  const std::vector<double> fa = fractions(na, A), fb = fractions(nb, B);
+  std::size_t sa = 0, sb = 0;
+  while (sa < na || sb < nb) {
+    if (sb == nb || (sa < na && fa[sa + 1] <= fb[sb + 1])) {
+      out.push_back({A(sa), A(sa + 1), B(sb)});
+      ++sa;
+    } else {
+      out.push_back({B(sb + 1), B(sb), A(sa)});
+      ++sb;
+    }
+  }
+}
+
+struct Patch {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<Loop> loops;
+};
+
+// F's contour on a grid of `h` with a grid point on `centre`, reaching `reach` from it: the
+// triangles whose every corner is `inside`; empty loops and triangles when its border is
+// pinched.
+template <class Inside>
+Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double reach, double h,
+                    const Inside& inside_hole) {
+  const int n = static_cast<int>(std::ceil((reach + h) / h));
+  ContourGrid grid;
+  grid.box.min = centre - Vec3::Constant(n * h);
+  grid.box.max = centre + Vec3::Constant(n * h);
+  grid.cells = {2 * n, 2 * n, 2 * n};
+  constexpr double kMargin = 0.05;
+  const ContourMesh contour =
+      marching_tetrahedra(grid, sample_grid(surface, grid), kMargin, /*open=*/true);
+  Patch patch;
+  std::vector<std::int64_t> index(contour.positions.size(), -1);
+  std::vector<Vec3> placed(contour.positions.size());
+  for (std::size_t v = 0; v < placed.size(); ++v)
+    placed[v] = root_on_edge(surface, contour.edges[v], kMargin);
+  for (const Triangle& t : contour.triangles) {
+    bool inside = true;
+    for (const std::uint32_t v : t) inside = inside && inside_hole(placed[v]);
+    if (!inside) continue;
+    Triangle local;
+    for (int i = 0; i < 3; ++i) {
+      if (index[t[i]] < 0) {
+        index[t[i]] = static_cast<std::int64_t>(patch.positions.size());
+        patch.positions.push_back(placed[t[i]]);
+      }
+      local[i] = static_cast<std::uint32_t>(index[t[i]]);
+    }
+    patch.triangles.push_back(local);
+  }
+  // Newton polishes what the margin moved off F, unless it would travel far (near the
+  // critical point it may run to the other sheet: contour_base_mesh.cpp).
+  for (Vec3& p : patch.positions) {
+    const ProjectionResult r = project_to_surface(surface, p);
+    if (r.converged && (r.point - p).norm() <= 0.1 * h) p = r.point;
+  }
+  std::unordered_map<std::uint64_t, char> directed;
+  for (const Triangle& t : patch.triangles)
+    for (int i = 0; i < 3; ++i) directed[(std::uint64_t{t[i]} << 32) | t[(i + 1) % 3]] = 1;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> open;
+  for (const Triangle& t : patch.triangles)
+    for (int i = 0; i < 3; ++i)
+      if (!directed.count((std::uint64_t{t[(i + 1) % 3]} << 32) | t[i]))
+        open.emplace_back(t[i], t[(i + 1) % 3]);
+  patch.loops = loops_of(open);
+  if (patch.loops.empty() && !open.empty()) patch.triangles.clear();
+  return patch;
+}
+
+// Where the new triangles' corners will be: the border's vertices are still where the
+// previous step left them (the normal correction that follows moves them onto F).
+std::vector<Vec3> on_surface(const ImplicitSurface& surface, std::vector<Vec3> positions,
+                             std::size_t border_vertices) {
+  for (std::size_t v = 0; v < border_vertices; ++v) {
+    const ProjectionResult r = project_to_surface(surface, positions[v]);
+    if (r.converged) positions[v] = r.point;
+  }
+  return positions;
+}
+
+// Cosine between a triangle's normal and grad F at its centroid (positive: faces outwards).
+double facing(const ImplicitSurface& surface, const std::vector<Vec3>& p, const Triangle& t) {
+  const Vec3 n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+  Vec3 g;
+  surface.value_gradient((p[t[0]] + p[t[1]] + p[t[2]]) / 3.0, g);
+  const double d = n.norm() * g.norm();
+  return d > 0 ? n.dot(g) / d : -1.0;
+}
+
+// The strip's rungs follow the loops' jagged sampling, and a rung can cross its neighbour on
+// the surface: a triangle turned over. Flipping the edge it shares with another new triangle
+// (the quad's other diagonal) unfolds it when both new triangles then face outwards. Returns
+// whether every triangle faces outwards.
+bool unfold_by_flips(const ImplicitSurface& surface, const std::vector<Vec3>& p,
+                     std::vector<Triangle>& triangles) {
+  const auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
+  std::unordered_map<std::uint64_t, std::uint32_t> half;  // directed edge -> 3 * triangle + i
+  const auto enter = [&](std::uint32_t k) {
+    for (std::uint32_t i = 0; i < 3; ++i)
+      half[key(triangles[k][i], triangles[k][(i + 1) % 3])] = 3 * k + i;
+  };
+  const auto leave = [&](std::uint32_t k) {
+    for (int i = 0; i < 3; ++i) half.erase(key(triangles[k][i], triangles[k][(i + 1) % 3]));
+  };
+  for (std::uint32_t k = 0; k < triangles.size(); ++k) enter(k);
+  for (int pass = 0; pass < 8; ++pass) {
+    bool flipped = false, all_good = true;
+    for (std::uint32_t k = 0; k < triangles.size(); ++k) {
+      if (facing(surface, p, triangles[k]) > 0) continue;
+      all_good = false;
+      for (std::uint32_t i = 0; i < 3; ++i) {
+        const Triangle t = triangles[k];
+        const std::uint32_t u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
+        const auto it = half.find(key(v, u));
+        if (it == half.end()) continue;  // on the border
+        const std::uint32_t k2 = it->second / 3;
+        const Triangle& t2 = triangles[k2];
+        const std::uint32_t x = t2[(it->second % 3 + 2) % 3];
+        if (x == w || half.count(key(w, x)) || half.count(key(x, w))) continue;
+        const Triangle a{w, u, x}, b{x, v, w};
+        if (std::min(facing(surface, p, a), facing(surface, p, b)) <=
+            std::min(facing(surface, p, t), facing(surface, p, t2)))
+          continue;
+        leave(k);
+        leave(k2);
+        triangles[k] = a;
+        triangles[k2] = b;
+        enter(k);
+        enter(k2);
+        flipped = true;
+        break;
+      }
+    }
+    if (all_good) return true;
+    if (!flipped) break;
+  }
+  bool ok = true;
+  for (const Triangle& t : triangles)
+    if (facing(surface, p, t) <= 0) ok = false;
+  return ok;
+}
+
+// One attempt at cut radius r, patch spacing h.
+LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
+                          double r, double h) {
+  LocalRepairResult result;
+  const auto refuse = [&](const std::string& why) {
+    result.why_not = why;
+    return result;
+  };
+
+  // 1. The cut, with every border loop even: the new triangles filling a loop's side number
+  // as many as its edges, modulo 2, and where the patch leaves a loop alone (a split: one cap
+  // per loop) they are paired among themselves.
+  std::vector<char> cut(mesh.face_capacity(), 0);
+  for (const Face f : mesh.live_faces())
+    for (const Vertex v : mesh.vertices(f))
+      if ((mesh.position(v) - centre).norm() <= r) cut[f.idx] = 1;
+  close_cut(mesh, cut);
+  std::vector<Loop> mesh_loops = loops_of(border_of(mesh, cut));
+  if (mesh_loops.empty()) return refuse("nothing to cut near the event, or its border is pinched");
+  const auto odd_loops = [](const std::vector<Loop>& loops) {
+    return std::count_if(loops.begin(), loops.end(), [](const Loop& l) { return l.size() % 2; });
+  };
+  // An odd loop is mended by cutting one more face g next to it, alone: one whose
+  // refinement edge leads to a coarser face (not a diamond) and which is no remaining face's
+  // refinement neighbour, so that the cut stays closed. The loop's length changes by one (or
+  // three). In a 4-8 mesh such faces are where the refinement level changes; a diamond would
+  // take its partner along and keep the parity.
+  for (int round = 0; round < 16 && odd_loops(mesh_loops) > 0; ++round) {
+    const Loop& odd = *std::find_if(mesh_loops.begin(), mesh_loops.end(),
+                                    [](const Loop& l) { return l.size() % 2; });
+    bool fixed = false;
+    for (std::size_t k = 0; k < odd.size() && !fixed; ++k)
+      mesh.for_each_corner_around(Vertex(odd[k]), [&](Corner corner) {
+        const Face g = corner.face;
+        if (fixed || cut[g.idx] || mesh.is_paired(g)) return;
+        for (int i = 0; i < 3; ++i) {
+          const Face n = mesh.neighbor(g, i);
+          if (n.is_valid() && !cut[n.idx] && mesh.neighbor(n, 0) == g) return;
+        }
+        cut[g.idx] = 1;
+        std::vector<Loop> loops = loops_of(border_of(mesh, cut));
+        if (!loops.empty() && odd_loops(loops) < odd_loops(mesh_loops)) {
+          mesh_loops = std::move(loops);
+          fixed = true;
+        } else {
+          cut[g.idx] = 0;
+        }
+      });
+    if (fixed) continue;
+    // None there (a uniformly refined region is all diamonds): split a diamond beside the
+    // loop, whose four children are such faces, and look again.
+    Face diamond;
+    for (std::size_t k = 0; k < odd.size() && !diamond.is_valid(); ++k)
+      mesh.for_each_corner_around(Vertex(odd[k]), [&](Corner corner) {
+        const Face f = corner.face, partner = mesh.neighbor(f, 0);
+        if (!diamond.is_valid() && !cut[f.idx] && mesh.is_paired(f) && partner.is_valid() &&
+            !cut[partner.idx])
+          diamond = f;
+      });
+    if (!diamond.is_valid() || !mesh.split(diamond).is_valid())
+      return refuse("no cut with even border loops");
+    cut.resize(mesh.face_capacity(), 0);
+    mesh_loops = loops_of(border_of(mesh, cut));
+    if (mesh_loops.empty()) return refuse("the cut's border is pinched");
+  }
+  if (odd_loops(mesh_loops) > 0) return refuse("no cut with even border loops");
+  std::vector<Face> removed;
+  for (const Face f : mesh.live_faces())
+    if (cut[f.idx]) removed.push_back(f);
+  if (removed.size() == mesh.n_faces()) return refuse("the cut takes the whole mesh");
+
+  // 2. The patch: F's contour near the event, a little inside the cut.
+  // The patch: F's contour within r - h / 2 of the event, so that a strip about an edge wide
+  // separates it from the cut's border (which lies beyond r).
+  double reach = 0;
+  for (const Face f : removed)
+    for (const Vertex v : mesh.vertices(f))
+      reach = std::max(reach, (mesh.position(v) - centre).norm());
+  const double keep = r - 0.5 * h;
+  const auto in_hole = [&](const Vec3& p) { return (p - centre).norm() <= keep; };
+  const Patch patch = contour_patch(surface, centre, reach, h, in_hole);
+  if (patch.loops.size() != mesh_loops.size())
+    return refuse("the contour near the event has " + std::to_string(patch.loops.size()) +
+                  " border loops, the cut " + std::to_string(mesh_loops.size()));
+
+  // Local numbering: the border's vertices first (existing), then the patch's (new).
+  std::vector<Vertex> existing;
+  std::unordered_map<std::uint32_t, std::uint32_t> local_of;
+  std::vector<Vec3> positions;
+  for (const Loop& loop : mesh_loops)
+    for (const std::uint32_t v : loop) {
+      local_of[v] = static_cast<std::uint32_t>(existing.size());
+      existing.emplace_back(v);
+      positions.push_back(mesh.position(Vertex(v)));
+    }
+  const auto offset = static_cast<std::uint32_t>(existing.size());
+  positions.insert(positions.end(), patch.positions.begin(), patch.positions.end());
+  std::vector<Triangle> triangles;
+  for (const Triangle& t : patch.triangles)
+    triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+
+  // 3. Stitch each border loop to the nearest patch loop (one each).
+  std::vector<Loop> patch_loops = patch.loops;
+  std::vector<Vec3> patch_centres;
+  for (Loop& b : patch_loops) {
+    for (std::uint32_t& v : b) v += offset;
+    patch_centres.push_back(centroid(positions, b));
+  }
+  std::vector<char> taken(patch_loops.size(), 0);
+  for (const Loop& loop : mesh_loops) {
+    Loop a;
+    for (const std::uint32_t v : loop) a.push_back(local_of[v]);
+    const Vec3 c = centroid(positions, a);
+    std::size_t best = patch_loops.size();
+    for (std::size_t k = 0; k < patch_loops.size(); ++k)
+      if (!taken[k] && (best == patch_loops.size() ||
+                        (patch_centres[k] - c).norm() < (patch_centres[best] - c).norm()))
+        best = k;
+    taken[best] = 1;
+    zip(positions, a, patch_loops[best], triangles);
+  }
+
+  // 4. Unfold, then pair the new triangles.
+  if (!unfold_by_flips(surface, on_surface(surface, positions, offset), triangles))
+    return refuse("a new triangle would be turned over");
+  std::vector<std::int64_t> partner;
+  try {
+    partner = pair_triangles(positions, triangles);
+  } catch (const std::invalid_argument& e) {
+    return refuse(std::string("the new triangles are not a manifold: ") + e.what());
+  }
+  if (std::count(partner.begin(), partner.end(), -1) > 0)
+    return refuse("the new triangles cannot all be paired");
+  const std::vector<Triangle> ordered = refinement_edge_first(triangles, partner);
+  const std::vector<Vec3> created(positions.begin() + offset, positions.end());
+  Mesh48 backup = mesh;
+  try {
+    result.new_vertices = mesh.replace_region(removed, existing, created, ordered);
+  } catch (const std::logic_error& e) {
+    mesh = std::move(backup);
+    return refuse(e.what());
+  }
+  result.repaired = true;
+  result.removed_faces = removed.size();
+  result.added_faces = ordered.size();
+  return result;
+}
+
+}  // namespace
+
+LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
+                                 const LocalRepairOptions& options) {
+  LocalRepairResult last;
+  if (!(options.radius > 0) || !(options.spacing > 0)) {
+    last.why_not = "no radius or spacing";
+    return last;
+  }
+  // A matching or a strip that fails at one cut often succeeds at a slightly larger one (the
+  // border and the patch's loops both change): a few cuts, the smallest first.
+  const double h = options.spacing;
+  std::string why;
+  for (const double grow : {1.0, 1.25, 1.5})
+    for (const double finer : {1.0, 0.75}) {
+      last = attempt(mesh, surface, centre, grow * options.radius, finer * h);
+      if (last.repaired) return last;
+      why += (why.empty() ? "" : "; ") + last.why_not;
+    }
+  last.why_not = why;
+  return last;
+}
+
+}  // namespace dynamesh
