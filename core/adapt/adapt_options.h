@@ -47,6 +47,9 @@ struct AdaptOptions {
   // Watch F for merges, splits and pinches and rebuild the mesh when its topology no longer
   // matches (surfaces that say they may change topology; core/topology/topology_events.h).
   bool topology_events = true;
+  // Repair an event locally (core/topology/local_repair.h) before falling back to rebuilding
+  // the whole mesh; false always rebuilds (the benchmark's baseline).
+  bool local_topology_repair = true;
   SmoothingOptions smoothing;
   // Rounds of smoothing, measurement and settling (welds and splits until quiet) at the
   // initial time, after the first refinement (Adapter::relax): refined from the base mesh's

@@ -35,6 +35,7 @@ void Adapter::check_topology() {
 }
 
 bool Adapter::repair_topology_locally(const TopologyCheck& check) {
+  if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
   // The cut reaches two cells of the watching grid around the critical point (the mesh is
   // wrong within about one: the event happened since the last step), the patch is contoured

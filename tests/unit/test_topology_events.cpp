@@ -127,9 +127,8 @@ RunFigures run_and_judge(const Example& ex) {
       const auto dense = test::dense_error(mesh, *surface, 5 * o.density, 7);
       const double ratio = dense.max_error / (o.threshold + o.epsilon);
       fig.worst_error_ratio = std::max(fig.worst_error_ratio, ratio);
-      EXPECT_LE(ratio, kSparseSamplingSlack)
-          << frame << ": dense error " << dense.max_error << " at (" << dense.worst.transpose()
-          << ")";
+      EXPECT_LE(ratio, kSparseSamplingSlack) << frame << ": dense error " << dense.max_error
+                                             << " at (" << dense.worst.transpose() << ")";
     }
     if (nearest <= kEventMargin) continue;
     ++fig.judged_frames;
@@ -186,7 +185,8 @@ Example diagonal_blobs_example() {
   };
   const std::string formula = "0.5 - " + blob("-") + " - " + blob("+");
   e.make = [formula] {
-    return make_scene("expr", {}, {{"implicit", formula}, {"bounds", "-1.2,-1.1,-1.2,1.2,1.1,1.2"}});
+    return make_scene("expr", {},
+                      {{"implicit", formula}, {"bounds", "-1.2,-1.1,-1.2,1.2,1.1,1.2"}});
   };
   e.events = {{t1, TopologyEventKind::kMerge}, {t2, TopologyEventKind::kSplit}};
   e.topology = [t1, t2](double t) {
