@@ -146,8 +146,9 @@ RunFigures run_and_judge(const Example& ex) {
   EXPECT_GE(fig.mean_survival, 0.9) << ex.name;
   // Every event repaired locally (local_repair.h), none by the global re-base fallback.
   EXPECT_LE(fig.rebuilds, ex.allowed_rebuilds) << ex.name;
-  if (ex.allowed_rebuilds == 0)
+  if (ex.allowed_rebuilds == 0) {
     EXPECT_EQ(fig.local_repairs, static_cast<int>(ex.events.size())) << ex.name;
+  }
 
   // Every true event reported within one step, with its kind; nothing else reported.
   const double step = 1.0 / kSteps;
