@@ -332,6 +332,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
     if (!diamond.is_valid() || !mesh.split(diamond).is_valid())
       return refuse("no cut with even border loops");
     cut.resize(mesh.face_capacity(), 0);
+    close_cut(mesh, cut);  // a child's refinement edge may lie on the border
     mesh_loops = loops_of(border_of(mesh, cut));
     if (mesh_loops.empty()) return refuse("the cut's border is pinched");
   }
