@@ -53,6 +53,36 @@ void close_cut(const Mesh48& mesh, std::vector<char>& cut) {
   }
 }
 
+// The depth every face beside the cut's border has, after cutting the deeper ones (closed
+// again each time); -1 when nothing remains. The new triangles all get this depth: inside a
+// piece of the patch every edge is a pair's refinement edge or a leg shared by two faces, so
+// the piece has one depth, and across the seam (the old faces' legs, by the closure) the 4-8
+// rule wants the old face alike deep (Mesh48::check). Cutting to the coarsest depth on the
+// border is the "weld the region down": the old side is coarse where it meets the
+// patch, and the queues refine it again.
+int level_border(const Mesh48& mesh, std::vector<char>& cut) {
+  for (;;) {
+    int coarsest = -1;
+    std::vector<std::uint32_t> border;
+    for (const Face f : mesh.live_faces()) {
+      if (cut[f.idx]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const Face across = mesh.neighbor(f, i);
+        if (!across.is_valid() || !cut[across.idx]) continue;
+        border.push_back(f.idx);
+        const int d = mesh.depth(f);
+        if (coarsest < 0 || d < coarsest) coarsest = d;
+        break;
+      }
+    }
+    bool grew = false;
+    for (const std::uint32_t f : border)
+      if (mesh.depth(Face(f)) > coarsest) cut[f] = grew = 1;
+    if (!grew) return coarsest;
+    close_cut(mesh, cut);
+  }
+}
+
 // Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
                                                                const std::vector<char>& cut) {
@@ -287,6 +317,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
     for (const Vertex v : mesh.vertices(f))
       if ((mesh.position(v) - centre).norm() <= r) cut[f.idx] = 1;
   close_cut(mesh, cut);
+  level_border(mesh, cut);
   std::vector<Loop> mesh_loops = loops_of(border_of(mesh, cut));
   if (mesh_loops.empty()) return refuse("nothing to cut near the event, or its border is pinched");
   const auto odd_loops = [](const std::vector<Loop>& loops) {
@@ -309,13 +340,14 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
           const Face n = mesh.neighbor(g, i);
           if (n.is_valid() && !cut[n.idx] && mesh.neighbor(n, 0) == g) return;
         }
-        cut[g.idx] = 1;
-        std::vector<Loop> loops = loops_of(border_of(mesh, cut));
+        std::vector<char> trial = cut;
+        trial[g.idx] = 1;
+        level_border(mesh, trial);
+        std::vector<Loop> loops = loops_of(border_of(mesh, trial));
         if (!loops.empty() && odd_loops(loops) < odd_loops(mesh_loops)) {
+          cut = std::move(trial);
           mesh_loops = std::move(loops);
           fixed = true;
-        } else {
-          cut[g.idx] = 0;
         }
       });
     if (fixed) continue;
@@ -333,6 +365,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
       return refuse("no cut with even border loops");
     cut.resize(mesh.face_capacity(), 0);
     close_cut(mesh, cut);  // a child's refinement edge may lie on the border
+    level_border(mesh, cut);
     mesh_loops = loops_of(border_of(mesh, cut));
     if (mesh_loops.empty()) return refuse("the cut's border is pinched");
   }
@@ -341,6 +374,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   for (const Face f : mesh.live_faces())
     if (cut[f.idx]) removed.push_back(f);
   if (removed.size() == mesh.n_faces()) return refuse("the cut takes the whole mesh");
+  const int depth = level_border(mesh, cut);  // already level: the patch's depth
 
   // 2. The patch: F's contour near the event, a little inside the cut.
   // The patch: F's contour within r - h / 2 of the event, so that a strip about an edge wide
@@ -408,7 +442,8 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   const std::vector<Vec3> created(positions.begin() + offset, positions.end());
   Mesh48 backup = mesh;
   try {
-    result.new_vertices = mesh.replace_region(removed, existing, created, ordered);
+    result.new_vertices = mesh.replace_region(removed, existing, created, ordered,
+                                              std::vector<int>(ordered.size(), depth));
   } catch (const std::logic_error& e) {
     mesh = std::move(backup);
     return refuse(e.what());
