@@ -321,7 +321,7 @@ Time:
                          [50]; step 0 is the initial adaptation, so N steps give N+1 rows
 Adaptation:
   --threshold T          target geometric error, scene units  [the scene's: 0.008; mri 0.5 mm]
-  --epsilon E            hysteresis: weld below T-E, split above T+E, 0 <= E < T  [T/4]
+  --epsilon E            hysteresis: split above T+E, weld below T (README), 0 <= E < T  [T/4]
   --density D            samples per unit area, at least 9 per triangle  [the scene's: 2000;
                          mri 2 per mm^2]
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
