@@ -58,6 +58,23 @@ MaskVolume read_mask(const std::filesystem::path& path, const VoxelGrid& volume_
   return mask;
 }
 
+// A brain must span enough voxels to be segmented at all: with voxels so large that even the
+// largest plausible brain (SegmentationOptions::max_volume_ml) would fill fewer than 1000
+// of them (e.g. a sform scaled 100x: 1e6 mm^3 voxels), the volume is refused at once
+// instead of after the segmentation.
+void check_voxels_can_hold_a_brain(const VoxelGrid& grid, const SegmentationOptions& o) {
+  constexpr double kMinBrainVoxels = 1000.0;
+  if (!(o.max_volume_ml > 0.0)) return;
+  const double largest = o.max_volume_ml * 1000.0 / kMinBrainVoxels;  // mm^3
+  if (grid.voxel_volume() <= largest) return;
+  std::ostringstream s;
+  s << "voxels of " << grid.voxel_volume() << " mm^3 (spacing " << grid.spacing().transpose()
+    << " mm): a brain of at most " << o.max_volume_ml << " ml would span fewer than "
+    << kMinBrainVoxels << " of them (at most " << largest << " mm^3 each); check the header's "
+    << "sform/qform and pixdim";
+  throw std::invalid_argument(s.str());
+}
+
 // Refuses, before the preprocessing allocates, a volume whose estimate exceeds the budget.
 void check_memory_budget(const VoxelGrid& grid, double max_memory_mb) {
   if (!(max_memory_mb > 0.0)) return;
@@ -97,6 +114,7 @@ MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptio
                                     std::optional<MaskVolume> mask) {
   if (mask && mask->grid.dims != intensity.grid.dims)
     throw std::invalid_argument("the mask's grid differs from the volume's");
+  check_voxels_can_hold_a_brain(intensity.grid, options.segmentation);
   check_memory_budget(intensity.grid, options.max_memory_mb);
   if (!has_orthogonal_axes(intensity.grid)) {
     // A sheared placement: preprocessing on a grid with perpendicular axes (see
