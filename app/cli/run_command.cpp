@@ -44,14 +44,31 @@ ProgressCallback progress_printer(const RunOptions& o, std::ostream& log) {
   };
 }
 
+// The budgets hold while the scene loads too: --max-memory bounds what a loader plans to
+// allocate (mri: the volume's preprocessing), and --max-seconds, counted from the start of
+// the run, is checked at every progress report of the load (a load has nothing to deliver
+// when it is stopped: one line, exit status 2).
 std::unique_ptr<Surface> build_scene(RunOptions& o, std::ostream& log) {
   try {
     const SceneInfo* info = nullptr;
     const std::vector<SceneInfo> scenes = list_scenes();
     for (const SceneInfo& s : scenes)
       if (s.name == o.scene) info = &s;
+    const ProgressCallback print = progress_printer(o, log);
+    const auto deadline = o.adapt.deadline;
+    const double max_seconds = o.max_seconds;
+    const ProgressCallback progress = [&print, deadline, max_seconds](std::string_view stage,
+                                                                      double fraction) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        std::ostringstream msg;
+        msg << "the time budget (--max-seconds " << max_seconds << ") ran out while loading the "
+            << "scene (" << stage << " " << static_cast<int>(100 * fraction) << "%)";
+        throw std::invalid_argument(msg.str());
+      }
+      if (print) print(stage, fraction);
+    };
     std::unique_ptr<Surface> surface =
-        make_scene(o.scene, o.params, o.scene_text, progress_printer(o, log));
+        make_scene(o.scene, o.params, o.scene_text, progress, o.max_memory_mb);
     apply_scene_defaults(o, *info);  // make_scene has rejected an unknown name
     return surface;
   } catch (const std::invalid_argument& e) {
@@ -350,7 +367,13 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     throw UsageError("--t0 and --t1 must lie in [0, 1] (normalised animation time)");
   if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
   if (o.steps == 0) o.keyframes.resize(1);  // adapt once, at the first time
+  const auto start = std::chrono::steady_clock::now();
+  if (o.max_seconds > 0)
+    o.adapt.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(o.max_seconds));
   std::unique_ptr<Surface> surface = build_scene(o, log);
+  const double preparation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RunOutputs written;
   check_outputs(o, written);
   std::unique_ptr<StatsCsvWriter> csv;
@@ -375,14 +398,11 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     throw UsageError(e.what());
   }
   surface->set_time(o.keyframes.front());
-  if (o.max_seconds > 0)
-    o.adapt.deadline = std::chrono::steady_clock::now() +
-                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                           std::chrono::duration<double>(o.max_seconds));
   Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
   RunSummary summary;
   summary.scene = o.scene;
   summary.steps = static_cast<int>(step_times(o).size());
+  summary.preparation_seconds = preparation_seconds;
   std::vector<double> step_seconds;
   try {
     run_steps(o, adapter, fields, csv.get(), exporter.get(), frames.get(), summary, step_seconds,

@@ -308,7 +308,9 @@ stderr, exit status 2, and none of the run's output files.
 Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
   --param KEY=VALUE      set a scene parameter (repeatable; 'dynamesh-cli scenes' lists them)
-  --volume FILE          mri: a NIfTI brain volume (.nii or .nii.gz)
+  --volume FILE|DIR      mri: a NIfTI volume (.nii or .nii.gz), a brain or a whole head
+                         (the brain is then extracted), or a folder of one DICOM series
+                         (converted with dcm2niix)
   --mask FILE            mri: a brain mask on the volume's grid (nonzero = brain, from BET,
                          SynthStrip, ...), used instead of the built-in segmentation
   --implicit EXPR | --height-field EXPR | --parametric "X;Y;Z"   expr: a typed surface
@@ -328,10 +330,12 @@ Adaptation:
   --max-triangles M      refinement budget (reported when hit)  [2000000]
   --max-samples S        sample budget: refinement stops beyond S samples (reported)
                          [50000000]
-  --max-seconds S        wall-time budget: refinement and stepping stop after S seconds,
+  --max-seconds S        wall-time budget from the start (loading included; a load that
+                         overruns it is refused): refinement and stepping stop after S seconds,
                          the run ends with what it has (reported)  [no limit]
   --max-memory MB        refused before starting when the budgets above could need more
-                         memory than MB MiB (an estimate)  [4096]
+                         memory than MB MiB (an estimate; mri: also its preprocessing, about
+                         40 bytes per voxel)  [4096]
   --seed S               sample jitter seed  [1]
   --sampling MODE        predictive: re-measure only faces whose error may have left the
                          band since last measured; full: every face every step  [predictive]

@@ -44,6 +44,7 @@ std::string to_json(const RunSummary& s) {
       << ",\"mean_sample_error\":" << number(l.mean_error) << ",\"samples\":" << l.samples
       << ",\"splits\":" << s.total_splits << ",\"welds\":" << s.total_welds
       << ",\"seconds_per_step\":" << number(s.seconds_per_step_median)
+      << ",\"preparation_seconds\":" << number(s.preparation_seconds)
       << ",\"valence_min\":" << s.quality.valence_min
       << ",\"valence_max\":" << s.quality.valence_max
       << ",\"min_angle_deg\":" << number(s.quality.min_angle_deg)

@@ -15,6 +15,7 @@ struct RunSummary {
   StepStats last;
   std::size_t total_splits = 0, total_welds = 0;
   double seconds_per_step_median = 0.0;
+  double preparation_seconds = 0.0;  // building the scene (mri: reading and preprocessing)
   MeshQuality quality;
   bool budget_hit = false;  // in any step
   bool sample_budget_hit = false, time_budget_hit = false;

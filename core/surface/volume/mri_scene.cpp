@@ -20,6 +20,10 @@ void take_overrides(const ParameterOverrides& overrides, MriOptions& options) {
     if (!std::isfinite(value) || value < 0.0) continue;
     if (key == "threshold") options.threshold = value;
     if (key == "depth_max") options.depth_max = value;
+    if (key == "closing") {
+      options.closing_radius_mm = value;
+      options.closing_given = true;
+    }
   }
 }
 
@@ -40,7 +44,8 @@ std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
     volume_given = true;
   }
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(options.volume_path, ec)) {
+  if (!std::filesystem::is_regular_file(options.volume_path, ec) &&
+      !std::filesystem::is_directory(options.volume_path, ec)) {
     if (!volume_given) {
       throw std::invalid_argument(
           std::string("mri: the default volume ") + kDefaultMriVolume +
@@ -49,10 +54,11 @@ std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
     }
     throw std::invalid_argument("mri: volume '" + options.volume_path.string() +
                                 "' is not a readable file (--volume takes a NIfTI .nii or "
-                                ".nii.gz file)");
+                                ".nii.gz file, or a folder holding one DICOM series)");
   }
   take_overrides(request.overrides, options);
   options.progress = request.progress;
+  options.max_memory_mb = request.max_memory_mb;
   std::unique_ptr<MriSurface> surface;
   try {
     surface = make_mri_surface(options);
@@ -74,7 +80,8 @@ SceneRegistration mri_scene_registration() {
        "depth in mm of the layer at t = 1 below the brain's surface (at most the brain's "
        "depth - 1 mm)"},
       {"threshold", 0.0, 0.0, 32767.0,
-       "segmentation intensity threshold, at most the volume's maximum; 0 means Otsu's"}};
+       "segmentation intensity threshold, at most the volume's maximum; 0 means Otsu's"},
+      {"closing", MriOptions{}.closing_radius_mm, 0.0, kMaxClosingMm, kClosingHelp}};
   SceneRegistration r;
   r.name = MriSurface::kName;
   r.description = std::string(MriSurface::kDescription) +

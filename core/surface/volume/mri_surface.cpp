@@ -33,7 +33,8 @@ std::vector<SurfaceParameter> MriSurface::parameters() const {
            "depth in mm of the layer at t = 1 below the brain's surface"},
           {"threshold", layers_.options().segmentation.threshold, 0.0, layers_.intensity_range()[1],
            "segmentation intensity threshold; 0 means Otsu's (currently " +
-               std::to_string(layers_.segmentation().threshold) + ")"}};
+               std::to_string(layers_.segmentation().threshold) + ")"},
+          {"closing", layers_.segmentation().closing_radius_mm, 0.0, kMaxClosingMm, kClosingHelp}};
 }
 
 void MriSurface::set_parameter(const std::string& name, double value) {
@@ -43,6 +44,10 @@ void MriSurface::set_parameter(const std::string& name, double value) {
     check_parameter_value(kName, p, value);
     if (name == "depth_max") {
       depth_max_ = value;
+    } else if (name == "closing") {
+      if (value == layers_.segmentation().closing_radius_mm) return;
+      layers_.set_closing(value, progress_);
+      depth_max_ = std::min(depth_max_, std::max(0.0, layers_.max_depth() - 1.0));
     } else if (value != layers_.options().segmentation.threshold) {
       // The same threshold again needs no work (the registry re-applies what a factory
       // already built with).
@@ -106,8 +111,10 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   MriLayersOptions layer_options;
   layer_options.volume_path = options.volume_path;
   layer_options.mask_path = options.mask_path;
+  layer_options.max_memory_mb = options.max_memory_mb;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
+  if (options.closing_given) layer_options.segmentation.closing_reference_ml = 0.0;
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
                                       options.depth_max, options.progress);
 }
