@@ -408,6 +408,7 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
                    step_seconds.end());
   summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
   summary.quality = measure_quality(adapter.mesh());
+  summary.measure_resident_memory();
   if (frames && !o.quiet)
     log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
   // Budget hits are reported even with --quiet: the result is not what was asked for.

@@ -101,6 +101,10 @@ class SampleStore final : public MeshListener {
   void compact_if_wasteful();
   void draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count = 0);
   static constexpr std::int64_t kPrefetchAhead = 4;
+  // compact() gives a buffer back when its capacity exceeds kReleaseFactor times the live
+  // samples (or times kReleaseFloor, below which buffers are too small to matter: 768 KB).
+  static constexpr std::size_t kReleaseFactor = 4;
+  static constexpr std::size_t kReleaseFloor = std::size_t{1} << 16;
   void prefetch_face(const Mesh48& mesh, Face f) const;
   // Measures one face; returns whether its error estimate is resolved.
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
@@ -110,6 +114,7 @@ class SampleStore final : public MeshListener {
   std::uint64_t seed_;
   std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
+                                         // (up to kReleaseFactor times the live samples)
   std::size_t garbage_ = 0;              // samples in no face's range
   std::vector<std::uint32_t> face_start_, face_count_;
   std::vector<double> face_error_;
