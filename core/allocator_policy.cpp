@@ -31,8 +31,9 @@ void choose_allocator_policy([[maybe_unused]] int argc, [[maybe_unused]] char** 
     return;
   }
 #if defined(__GLIBC__)
-  if (mallopt(M_MMAP_THRESHOLD, static_cast<int>(kMmapThreshold)) == 1 &&
-      mallopt(M_TRIM_THRESHOLD, static_cast<int>(kTrimThreshold)) == 1)
+  // Fixing the mmap threshold also stops glibc from raising the trim threshold: the free
+  // top of the heap is given back above glibc's default 128 kB again.
+  if (mallopt(M_MMAP_THRESHOLD, static_cast<int>(kMmapThreshold)) == 1)
     g_policy = "fixed thresholds";
 #endif
 }
