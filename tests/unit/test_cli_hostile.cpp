@@ -251,6 +251,16 @@ TEST(CliHostile, NumbersThatWrapOrVanishAreRefused) {
   expect_refused({"run", "--scene", "mri\n"}, "mri\\n");
 }
 
+// Session 3's audit of the sphere's range: L = 0.001 (in [0.001, 10]) and --edge-length 0.001
+// ran for ever towards 10^8-10^9 triangles (killed at 60-90 s); the edge-length demand is now
+// part of the up-front estimate.
+TEST(CliHostile, EdgeLengthsNoBudgetCanMeetAreRefused) {
+  expect_refused({"run", "--scene", "sphere", "--param", "L=0.001", "--quiet"},
+                 "edges of at most --param L 0.001 need at least about");
+  expect_refused({"run", "--scene", "capsule-bend", "--edge-length", "0.001", "--quiet"},
+                 "edges of at most --edge-length 0.001 need at least about");
+}
+
 TEST(CliHostile, HugeDensityIsRefusedByTheSampleBudget) {
   expect_refused({"run", "--scene", "sphere", "--density", "1e12"}, "--max-samples");
   expect_refused({"run", "--scene", "sphere", "--max-triangles", "100000000"}, "--max-memory");
