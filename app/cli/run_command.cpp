@@ -151,7 +151,16 @@ void check_workload(const RunOptions& o, Surface& surface) {
   budget.max_triangles = static_cast<double>(o.adapt.max_triangles);
   budget.max_samples = static_cast<double>(o.adapt.max_samples);
   budget.hopeless = o.scene == "expr" ? 1.0 : 10.0;
-  const std::string reason = workload_refusal(surface, budget, *first, *last);
+  WorkloadWords words;
+  // The sphere's L (or --edge-length in its place) sets the edges of its x >= 0 half.
+  if (o.edge_length > 0) budget.edge_length = o.edge_length;
+  for (const SurfaceParameter& p : surface.parameters())
+    if (o.scene == "sphere" && p.name == "L" && !(o.edge_length > 0)) {
+      budget.edge_length = p.value;
+      words.edge_length = "--param L";
+    }
+  if (o.scene == "sphere") budget.edge_length_share = 0.5;
+  const std::string reason = workload_refusal(surface, budget, *first, *last, words);
   if (!reason.empty()) throw UsageError("scene " + o.scene + " " + reason);
 }
 
@@ -428,6 +437,7 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
                    step_seconds.end());
   summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
   summary.quality = measure_quality(adapter.mesh());
+  summary.measure_resident_memory();
   if (frames && !o.quiet)
     log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
   // Budget hits are reported even with --quiet: the result is not what was asked for.

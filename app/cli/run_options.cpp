@@ -301,8 +301,9 @@ Adapts the scene's base mesh to S(t0), then takes N steps to t1, keeping every s
 error within T + eps with few triangles (de Goes et al. 2006). Progress goes to stderr;
 the last line of stdout is a JSON summary: the last step's triangles, vertices,
 max_sample_error, mean_sample_error; over the run splits, welds, seconds_per_step
-(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles;
-the final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
+(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles,
+resident_mb and peak_resident_mb (the process's memory at the end and at its peak); the
+final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
 stderr, exit status 2, and none of the run's output files.
 
 Scene:

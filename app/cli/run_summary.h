@@ -33,6 +33,10 @@ struct RunSummary {
   void add(const StepStats& s);
   std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
   std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
+  // The process's resident memory at the end of the run and its peak (Linux's VmRSS and
+  // VmHWM, MiB; negative when unknown): a run's memory follows its mesh (issue 15's soak).
+  double resident_mb = -1.0, peak_resident_mb = -1.0;
+  void measure_resident_memory();
 };
 
 std::string to_json(const RunSummary& s);
