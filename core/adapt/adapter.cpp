@@ -185,21 +185,23 @@ const StepStats& Adapter::step(double t) {
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
   // one the paper's whole step, so that no sub-step moves the surface far against the mesh.
   Stopwatch clock;
-  const int n = plan_substeps(from, t);
+  bool planned = false;
+  const int n = plan_substeps(from, t, planned);
   stats_.seconds.project = clock.lap();
   bool corrected = false;
   for (int k = 1; k <= n; ++k)
-    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && n > 1);
+    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && planned);
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
   finish_stats();
   return stats_;
 }
 
-int Adapter::plan_substeps(double from, double to) {
+int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
   if (!options_.geometric || !options_.substeps.enabled || from == to) return 1;
   const bool carry = probe_.follows_material();
   if (carry) record_rest_points();
+  rest_points_planned = carry;
   surface_.set_time(to);
   predict_displacements(mesh_, probe_, carry ? &rest_points_ : nullptr, displacement_);
   const MotionEstimate e = estimate_substeps(mesh_, displacement_, options_.substeps);

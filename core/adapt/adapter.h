@@ -77,7 +77,9 @@ class Adapter {
   const StepStats& initialize_here();
   bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
-  int plan_substeps(double from, double to);
+  // Sets `rest_points_planned` when it recorded the rest points (at `from`), so that the
+  // first sub-step does not record them again (a whole evaluation pass over the vertices).
+  int plan_substeps(double from, double to, bool& rest_points_planned);
   void repair(const FoldRepairOptions& options);
   // Checks the frame about to be published for folds and slivers; repairs and re-measures.
   void publish_repaired();
