@@ -120,6 +120,10 @@ class ImplicitSurface : public Surface {
   virtual double value_gradient(const Vec3& p, Vec3& gradient) const;
   // By default central differences of value_gradient().
   virtual Mat3 hessian(const Vec3& p) const;
+  // F, grad F and Hess F together; by default value_gradient() and hessian(). Scenes that get
+  // all three from one evaluation (a rest shape under a map, jet.h) override it: curvatures()
+  // needs all three, once per vertex per step (issue 17's profile: a third of the smoothing).
+  virtual double value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& hessian) const;
   // Finite-difference step used by the defaults above; from length_scale().
   virtual double difference_step() const { return 1e-5 * length_scale(); }
 
