@@ -14,8 +14,8 @@ namespace dynamesh {
 enum class ColorRange { kFrame, kFirstFrame, kRun, kFixed };
 
 struct ColorSettings {
-  double threshold = 0.008;         // error mode: red at and beyond this (the adapter's T)
-  bool error_viridis = false;       // error mode: viridis instead of yellow-green-red
+  double threshold = 0.008;    // error mode: red at and beyond this (the adapter's T)
+  bool error_viridis = false;  // error mode: viridis instead of yellow-green-red
   // intensity: the scan's robust window (1st-99th percentile inside the brain; without a
   // scan, the field's 2nd-98th percentiles) instead of intensity_window / intensity_level.
   bool intensity_auto = true;
