@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -205,6 +206,39 @@ TEST(MriIntensity, RegionColoursAreFlatPerAtlasRegion) {
   EXPECT_NEAR(b.first, b2.first, 0.02);
   EXPECT_NEAR(b.second, b2.second, 0.02);
   EXPECT_GT(std::abs(a.first - b.first) + std::abs(a.second - b.second), 0.05);
+}
+
+TEST(MriIntensity, IntensityMapAndAtlasOptions) {
+  const fs::path dir = test::render_scratch("mri_options");
+  const fs::path ball = write_checkered_ball(dir, "ball", kAligned);
+  // Grey has no colour; viridis does (its ends are purple and yellow).
+  const auto saturated_share = [](const Picture& p) {
+    std::size_t n = 0, coloured = 0;
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < kViewWidth; ++x) {
+        if (p.background(x, y)) continue;
+        const unsigned char* c = p.at(x, y);
+        const int mx = std::max({c[0], c[1], c[2]}), mn = std::min({c[0], c[1], c[2]});
+        ++n;
+        coloured += mx > 0 && (mx - mn) > 0.25 * mx;
+      }
+    return n ? double(coloured) / double(n) : 0.0;
+  };
+  const Picture grey = render(ball_layer(ball), "map_grey");
+  const Picture viridis = render(ball_layer(ball) + Args{"--intensity-map", "viridis"}, "map_viridis");
+  EXPECT_LT(saturated_share(grey), 0.01);
+  EXPECT_GT(saturated_share(viridis), 0.5);
+  // Bad values: one line naming the option, exit status 2.
+  for (const Args& bad : {ball_layer(ball) + Args{"--intensity-map", "jet"},
+                          ball_layer(ball) + Args{"--atlas", (dir / "missing.nii.gz").string()},
+                          ball_layer(ball) + Args{"--atlas", ball.string() + ".txt"}}) {
+    const test::CliRun r = test::run_cli(bad + Args{"--quiet"});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.err.find("--intensity-map") != std::string::npos ||
+                r.err.find("--atlas") != std::string::npos)
+        << r.err;
+  }
 }
 
 }  // namespace
