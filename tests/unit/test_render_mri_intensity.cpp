@@ -225,7 +225,8 @@ TEST(MriIntensity, IntensityMapAndAtlasOptions) {
     return n ? double(coloured) / double(n) : 0.0;
   };
   const Picture grey = render(ball_layer(ball), "map_grey");
-  const Picture viridis = render(ball_layer(ball) + Args{"--intensity-map", "viridis"}, "map_viridis");
+  const Picture viridis =
+      render(ball_layer(ball) + Args{"--intensity-map", "viridis"}, "map_viridis");
   EXPECT_LT(saturated_share(grey), 0.01);
   EXPECT_GT(saturated_share(viridis), 0.5);
   // Bad values: one line naming the option, exit status 2.
