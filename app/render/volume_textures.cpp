@@ -47,7 +47,7 @@ void VolumeTextures::set(const std::shared_ptr<const VolumeImage>& image) {
   image_ = image;
   if (!image) return;
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (image->intensity && image->intensity.get() != intensity_uploaded_) {
+  if (image->intensity && image->intensity != intensity_uploaded_) {
     const ScalarVolume& v = *image->intensity;
     gl::BindTexture(GL_TEXTURE_3D, intensity_texture_);
     gl::TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, v.grid.dims[0], v.grid.dims[1], v.grid.dims[2], 0,
@@ -57,16 +57,16 @@ void VolumeTextures::set(const std::shared_ptr<const VolumeImage>& image) {
     world_to_texture_ = glm::scale(glm::mat4(1.0f), 1.0f / dims) *
                         glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
                         world_to_voxel_matrix(v.grid);
-    intensity_uploaded_ = image->intensity.get();
+    intensity_uploaded_ = image->intensity;
     ++uploads_;
   }
-  if (image->atlas && image->atlas.get() != labels_uploaded_) {
+  if (image->atlas && image->atlas != labels_uploaded_) {
     const VoxelVolume<std::int32_t>& l = image->atlas->labels;
     gl::BindTexture(GL_TEXTURE_3D, label_texture_);
     gl::TexImage3D(GL_TEXTURE_3D, 0, GL_R32I, l.grid.dims[0], l.grid.dims[1], l.grid.dims[2], 0,
                    GL_RED_INTEGER, GL_INT, l.values.data());
     world_to_label_ = world_to_voxel_matrix(l.grid);
-    labels_uploaded_ = image->atlas.get();
+    labels_uploaded_ = image->atlas;
     ++uploads_;
   }
 }

@@ -35,8 +35,10 @@ class VolumeTextures {
 
  private:
   std::shared_ptr<const VolumeImage> image_;
-  const void* intensity_uploaded_ = nullptr;  // which volumes the textures hold
-  const void* labels_uploaded_ = nullptr;
+  // The volumes the textures hold, kept alive so that a new volume can never be mistaken
+  // for them by its address (an mri scene, another scene, then another scan).
+  std::shared_ptr<const ScalarVolume> intensity_uploaded_;
+  std::shared_ptr<const LabelAtlas> labels_uploaded_;
   unsigned intensity_texture_ = 0, label_texture_ = 0;
   glm::mat4 world_to_texture_{1.0f}, world_to_label_{1.0f};
   int uploads_ = 0;

@@ -27,9 +27,11 @@ SlicePanel::~SlicePanel() {
     if (s.texture != 0) gl::DeleteTextures(1, &s.texture);
 }
 
-void SlicePanel::update_texture(Slice& s, int axis, int index, const ScalarVolume& v,
+void SlicePanel::update_texture(Slice& s, int axis, int index,
+                                const std::shared_ptr<const ScalarVolume>& volume,
                                 const Vec2& window) {
-  if (s.texture != 0 && s.index == index && s.volume == &v && s.window == window) return;
+  if (s.texture != 0 && s.index == index && s.volume == volume && s.window == window) return;
+  const ScalarVolume& v = *volume;
   const auto [u, w] = slice_axes(axis);
   const int nu = v.grid.dims[u], nw = v.grid.dims[w];
   std::vector<std::uint8_t> rgba(std::size_t(4) * nu * nw, 255);
@@ -50,30 +52,33 @@ void SlicePanel::update_texture(Slice& s, int axis, int index, const ScalarVolum
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl::TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, nu, nw, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   s.index = index;
-  s.volume = &v;
+  s.volume = volume;
   s.window = window;
 }
 
-const std::vector<Vec3>& SlicePanel::mesh_voxels(const MeshSnapshot& mesh, const VoxelGrid& grid) {
-  if (voxels_of_ == &mesh && voxels_count_ == mesh.n_vertices()) return voxels_;
+const std::vector<Vec3>& SlicePanel::mesh_voxels(const std::shared_ptr<const MeshSnapshot>& shared,
+                                                 const VoxelGrid& grid) {
+  if (voxels_of_ == shared) return voxels_;
+  const MeshSnapshot& mesh = *shared;
   const Mat3 inverse = grid.linear.inverse();
   voxels_.resize(mesh.n_vertices());
   const auto& p = mesh.positions;
   for (std::size_t i = 0; i < voxels_.size(); ++i)
     voxels_[i] = inverse * (Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]) - grid.offset);
-  voxels_of_ = &mesh;
-  voxels_count_ = mesh.n_vertices();
+  voxels_of_ = shared;
   return voxels_;
 }
 
 std::optional<Vec3> SlicePanel::draw(const VolumeImage& image, const Vec3& point,
-                                     const MeshSnapshot& mesh, const Vec2& window, float x, float y,
-                                     float side, std::vector<WidgetRect>* widgets) {
+                                     const std::shared_ptr<const MeshSnapshot>& shared_mesh,
+                                     const Vec2& window, float x, float y, float side,
+                                     std::vector<WidgetRect>* widgets) {
   if (!image.intensity) return std::nullopt;
   const ScalarVolume& v = *image.intensity;
   const Vec3 spacing = v.grid.spacing();
   const Vec3 p = v.grid.to_voxel(point);
-  const std::vector<Vec3>& voxels = mesh_voxels(mesh, v.grid);
+  const std::vector<Vec3>& voxels = mesh_voxels(shared_mesh, v.grid);
+  const MeshSnapshot& mesh = *shared_mesh;
   std::optional<Vec3> moved;
   ImGui::SetNextWindowPos(ImVec2(x, y));
   ImGui::SetNextWindowBgAlpha(0.85f);
@@ -84,7 +89,7 @@ std::optional<Vec3> SlicePanel::draw(const VolumeImage& image, const Vec3& point
     const auto [u, w] = slice_axes(axis);
     const int index = std::clamp(static_cast<int>(std::lround(p[axis])), 0, v.grid.dims[axis] - 1);
     Slice& s = slices_[axis];
-    update_texture(s, axis, index, v, window);
+    update_texture(s, axis, index, image.intensity, window);
     // Millimetres keep their proportions: anisotropic voxels are drawn stretched.
     const double width_mm = v.grid.dims[u] * spacing[u], height_mm = v.grid.dims[w] * spacing[w];
     const float k = side / static_cast<float>(std::max(width_mm, height_mm));

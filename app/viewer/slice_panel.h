@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -25,25 +26,25 @@ class SlicePanel {
   // Draws the window at (x, y) in window pixels, each slice at most `side` pixels wide.
   // Returns the new point when a slice was clicked. With `widgets`, each slice image's
   // rectangle is added as "slice_i", "slice_j", "slice_k" (the normal's voxel axis).
-  std::optional<Vec3> draw(const VolumeImage& image, const Vec3& point, const MeshSnapshot& mesh,
-                           const Vec2& window, float x, float y, float side,
-                           std::vector<WidgetRect>* widgets);
+  std::optional<Vec3> draw(const VolumeImage& image, const Vec3& point,
+                           const std::shared_ptr<const MeshSnapshot>& mesh, const Vec2& window,
+                           float x, float y, float side, std::vector<WidgetRect>* widgets);
 
  private:
   struct Slice {
     unsigned texture = 0;
     int index = -1;
-    const void* volume = nullptr;
+    std::shared_ptr<const ScalarVolume> volume;  // kept: never mistaken by its address
     Vec2 window{Vec2::Zero()};
   };
-  void update_texture(Slice& slice, int axis, int index, const ScalarVolume& volume,
-                      const Vec2& window);
+  void update_texture(Slice& slice, int axis, int index,
+                      const std::shared_ptr<const ScalarVolume>& volume, const Vec2& window);
   // The snapshot's vertices in voxel coordinates (cached per snapshot).
-  const std::vector<Vec3>& mesh_voxels(const MeshSnapshot& mesh, const VoxelGrid& grid);
+  const std::vector<Vec3>& mesh_voxels(const std::shared_ptr<const MeshSnapshot>& mesh,
+                                       const VoxelGrid& grid);
 
   std::array<Slice, 3> slices_;
-  const MeshSnapshot* voxels_of_ = nullptr;
-  std::size_t voxels_count_ = 0;
+  std::shared_ptr<const MeshSnapshot> voxels_of_;
   std::vector<Vec3> voxels_;
 };
 

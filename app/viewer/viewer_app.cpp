@@ -402,7 +402,7 @@ void ViewerApp::draw_probe(const VolumeProbe& probe, PanelActions& actions, bool
   const float x = (state_.show_panel ? kPanelWidth : 0.0f) + 8.0f;
   const float side = 170.0f;
   if (const auto moved =
-          slices_.draw(*image, probe.position, *snapshot_, window, x, float(win.y) - side - 48.0f,
+          slices_.draw(*image, probe.position, snapshot_, window, x, float(win.y) - side - 48.0f,
                        side, report ? &actions.widgets : nullptr))
     state_.probe = *moved;
 }
