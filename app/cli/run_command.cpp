@@ -206,6 +206,13 @@ SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
       throw UsageError("--color intensity needs a scene with MR intensity (--scene mri)");
     f.quantities = {"intensity"};
   }
+  if (o.color == "region") {
+    const std::shared_ptr<const VolumeImage> image = surface.volume_image();
+    if (!image || !image->atlas)
+      throw UsageError(
+          "--color region needs a label atlas: --scene mri with --atlas FILE.nii[.gz] (Colin27 "
+          "from mricron-data has AAL by default)");
+  }
   return f;
 }
 

@@ -97,6 +97,11 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError(k + ": " + e.what());
          }
        }},
+      {"--intensity-map",
+       [](RunOptions& o, auto& k, auto& v) {
+         if (v != "gray" && v != "viridis") throw UsageError(k + " must be gray or viridis");
+         o.colors.intensity_viridis = v == "viridis";
+       }},
       {"--steps", [](RunOptions& o, auto& k, auto& v) { o.steps = parse_int(k, v, 0, kMaxSteps); }},
       {"--threshold",
        [](RunOptions& o, auto& k, auto& v) {
@@ -157,6 +162,7 @@ const std::map<std::string, Setter>& valued_options() {
        }},
       {"--volume", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("volume", v); }},
       {"--mask", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("mask", v); }},
+      {"--atlas", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("atlas", v); }},
       {"--implicit",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("implicit", v); }},
       // --height is both the image height (DESIGN.md, --render) and the height-field formula
@@ -238,11 +244,9 @@ void validate(RunOptions& o) {
   if (o.edge_length < 0) throw UsageError("--edge-length must be positive");
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw UsageError("--width and --height must be between 16 and 16384 pixels");
-  const char* colors[] = {"error", "curvature", "intensity", "valence", "level", "shaded"};
-  bool known = false;
-  for (const char* c : colors) known = known || o.color == c;
-  if (!known)
-    throw UsageError("--color must be one of error, curvature, intensity, valence, level, shaded");
+  if (!parse_color_mode(o.color))
+    throw UsageError(
+        "--color must be one of error, curvature, intensity, region, valence, level, shaded");
 }
 
 }  // namespace
@@ -314,6 +318,8 @@ Scene:
                          (converted with dcm2niix)
   --mask FILE            mri: a brain mask on the volume's grid (nonzero = brain, from BET,
                          SynthStrip, ...), used instead of the built-in segmentation
+  --atlas FILE           mri: a label volume in the scan's space (names from FILE.nii.txt,
+                         "index name" lines) for --color region; Colin27: AAL by default
   --implicit EXPR | --height-field EXPR | --parametric "X;Y;Z"   expr: a typed surface
                          (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh
@@ -357,8 +363,11 @@ Output:
                          --color field), and DIR/frames.pvd: open it in ParaView to play them
   --render DIR           a PNG every --export-every K steps, rendered offscreen (no display
                          needed), --size WxH or --width W --height H  [1280x960]
-  --color MODE           error | curvature | intensity (mri) | valence | level | shaded
+  --color MODE           error | curvature | intensity (mri) | region (mri with an atlas) |
+                         valence | level | shaded
                          [error: yellow = none, green, red = at or beyond T]
+  --intensity-map M      intensity colours: gray or viridis (perceptual)  [gray]; the
+                         window is the scan's 1st-99th percentile inside the brain
   --color-range R        what curvature, intensity and level colours span: frame (each
                          frame's own), first (the first frame's), run (the whole run's),
                          or MIN,MAX  [frame]

@@ -679,6 +679,7 @@ MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {
     scalars.push_back(std::move(q));
   }
   MeshSnapshot snap = make_snapshot(mesh_, &normals, scalars);
+  snap.volume = surface_.volume_image();
   snap.time = surface_.time();
   snap.step = step_;
   return snap;

@@ -20,6 +20,8 @@
 
 namespace dynamesh {
 
+struct VolumeImage;
+
 // A named, adjustable scalar of a scene (SCENES.md), with its range and a one-line meaning.
 struct SurfaceParameter {
   std::string name;
@@ -75,6 +77,9 @@ class Surface {
   virtual std::vector<std::string> point_quantities() const { return {}; }
   // NaN for an unknown name. Thread-safe like every const evaluation.
   virtual double point_quantity(const std::string& name, const Vec3& p) const;
+  // The scan behind a volume scene (mri): intensities with their placement and an optional
+  // label atlas, for per-fragment colouring and picking (volume_image.h); null otherwise.
+  virtual std::shared_ptr<const VolumeImage> volume_image() const { return nullptr; }
 
  private:
   double time_ = 0.0;

@@ -20,6 +20,10 @@ constexpr double kBaseCellSize = 8.0;
 
 MriSurface::MriSurface(MriLayers layers, double depth_max, ProgressCallback progress)
     : layers_(std::move(layers)), depth_max_(depth_max), progress_(std::move(progress)) {
+  auto image = std::make_shared<VolumeImage>();
+  image->intensity = std::make_shared<const ScalarVolume>(layers_.intensity());
+  image->window = layers_.intensity_window();
+  image_ = std::move(image);
   const double limit = std::max(0.0, layers_.max_depth() - 1.0);
   if (!(depth_max >= 0.0 && depth_max <= limit)) {
     throw std::invalid_argument("mri: depth_max " + std::to_string(depth_max) + " outside [0, " +
@@ -57,6 +61,12 @@ void MriSurface::set_parameter(const std::string& name, double value) {
     return;
   }
   throw std::invalid_argument(unknown_parameter_message(kName, name, list));
+}
+
+void MriSurface::set_atlas(std::shared_ptr<const LabelAtlas> atlas) {
+  auto image = std::make_shared<VolumeImage>(*image_);  // the intensities stay shared
+  image->atlas = std::move(atlas);
+  image_ = std::move(image);
 }
 
 double MriSurface::point_quantity(const std::string& name, const Vec3& p) const {

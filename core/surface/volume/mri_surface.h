@@ -12,6 +12,7 @@
 
 #include "core/surface/surface.h"
 #include "core/surface/volume/mri_layers.h"
+#include "core/surface/volume/volume_image.h"
 
 namespace dynamesh {
 
@@ -82,6 +83,10 @@ class MriSurface final : public ImplicitSurface {
   Vec2 intensity_range() const { return layers_.intensity_range(); }
   Vec2 intensity_window() const { return layers_.intensity_window(); }
   const MriLayers& layers() const { return layers_; }
+  // The scan for the renderer and picking (read-only, shared with every snapshot), with the
+  // label atlas once one is set.
+  std::shared_ptr<const VolumeImage> volume_image() const override { return image_; }
+  void set_atlas(std::shared_ptr<const LabelAtlas> atlas);
 
  private:
   Vec3 first_crossing(const Vec3& origin, const Vec3& direction) const;
@@ -89,6 +94,7 @@ class MriSurface final : public ImplicitSurface {
   MriLayers layers_;
   double depth_max_;
   ProgressCallback progress_;
+  std::shared_ptr<const VolumeImage> image_;
 };
 
 // Reads, segments and transforms the volume (progress through options.progress); throws
