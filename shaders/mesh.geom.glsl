@@ -11,12 +11,14 @@ in VertexData {
   vec3 view_position;
   vec3 view_normal;
   float scalar;
+  vec3 world_position;
 } v_in[];
 
 out FragmentData {
   vec3 view_position;
   vec3 view_normal;
   float scalar;
+  vec3 world_position;
   noperspective vec3 edge_distance;
   // Categorical fields (valence, level): the three corners' values and where in the
   // triangle the fragment is, so it takes its nearest corner's value unblended.
@@ -42,6 +44,7 @@ void main() {
     g_out.view_position = v_in[i].view_position;
     g_out.view_normal = v_in[i].view_normal;
     g_out.scalar = v_in[i].scalar;
+    g_out.world_position = v_in[i].world_position;
     g_out.edge_distance = vec3(0.0);
     g_out.edge_distance[i] = heights[i];
     g_out.corner_scalars = vec3(v_in[0].scalar, v_in[1].scalar, v_in[2].scalar);

@@ -11,8 +11,8 @@
 
 namespace {
 
-// One line, whatever the message quotes from the command line (a scene name or file name
-// with a newline in it): control characters are shown escaped.
+// One short line, whatever the message quotes from the command line (a scene name or file
+// name with a newline in it: control characters are shown escaped; a huge formula: cut).
 std::string one_line(const std::string& text) {
   std::string out;
   for (const char c : text) {
@@ -25,6 +25,12 @@ std::string one_line(const std::string& text) {
     else
       out += c;
   }
+  // A message quoting a 100,000-character formula or header line is one line but not a
+  // readable one: its middle is left out.
+  constexpr std::size_t kHead = 400, kTail = 200;
+  if (out.size() > kHead + kTail + 100)
+    out = out.substr(0, kHead) + " [... " + std::to_string(out.size() - kHead - kTail) +
+          " characters left out ...] " + out.substr(out.size() - kTail);
   return out;
 }
 

@@ -44,14 +44,31 @@ ProgressCallback progress_printer(const RunOptions& o, std::ostream& log) {
   };
 }
 
+// The budgets hold while the scene loads too: --max-memory bounds what a loader plans to
+// allocate (mri: the volume's preprocessing), and --max-seconds, counted from the start of
+// the run, is checked at every progress report of the load (a load has nothing to deliver
+// when it is stopped: one line, exit status 2).
 std::unique_ptr<Surface> build_scene(RunOptions& o, std::ostream& log) {
   try {
     const SceneInfo* info = nullptr;
     const std::vector<SceneInfo> scenes = list_scenes();
     for (const SceneInfo& s : scenes)
       if (s.name == o.scene) info = &s;
+    const ProgressCallback print = progress_printer(o, log);
+    const auto deadline = o.adapt.deadline;
+    const double max_seconds = o.max_seconds;
+    const ProgressCallback progress = [&print, deadline, max_seconds](std::string_view stage,
+                                                                      double fraction) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        std::ostringstream msg;
+        msg << "the time budget (--max-seconds " << max_seconds << ") ran out while loading the "
+            << "scene (" << stage << " " << static_cast<int>(100 * fraction) << "%)";
+        throw std::invalid_argument(msg.str());
+      }
+      if (print) print(stage, fraction);
+    };
     std::unique_ptr<Surface> surface =
-        make_scene(o.scene, o.params, o.scene_text, progress_printer(o, log));
+        make_scene(o.scene, o.params, o.scene_text, progress, o.max_memory_mb);
     apply_scene_defaults(o, *info);  // make_scene has rejected an unknown name
     return surface;
   } catch (const std::invalid_argument& e) {
@@ -134,7 +151,16 @@ void check_workload(const RunOptions& o, Surface& surface) {
   budget.max_triangles = static_cast<double>(o.adapt.max_triangles);
   budget.max_samples = static_cast<double>(o.adapt.max_samples);
   budget.hopeless = o.scene == "expr" ? 1.0 : 10.0;
-  const std::string reason = workload_refusal(surface, budget, *first, *last);
+  WorkloadWords words;
+  // The sphere's L (or --edge-length in its place) sets the edges of its x >= 0 half.
+  if (o.edge_length > 0) budget.edge_length = o.edge_length;
+  for (const SurfaceParameter& p : surface.parameters())
+    if (o.scene == "sphere" && p.name == "L" && !(o.edge_length > 0)) {
+      budget.edge_length = p.value;
+      words.edge_length = "--param L";
+    }
+  if (o.scene == "sphere") budget.edge_length_share = 0.5;
+  const std::string reason = workload_refusal(surface, budget, *first, *last, words);
   if (!reason.empty()) throw UsageError("scene " + o.scene + " " + reason);
 }
 
@@ -184,6 +210,13 @@ SnapshotFields fields_for(const RunOptions& o, const Surface& surface) {
     if (std::find(q.begin(), q.end(), "intensity") == q.end())
       throw UsageError("--color intensity needs a scene with MR intensity (--scene mri)");
     f.quantities = {"intensity"};
+  }
+  if (o.color == "region") {
+    const std::shared_ptr<const VolumeImage> image = surface.volume_image();
+    if (!image || !image->atlas)
+      throw UsageError(
+          "--color region needs a label atlas: --scene mri with --atlas FILE.nii[.gz] (Colin27 "
+          "from mricron-data has AAL by default)");
   }
   return f;
 }
@@ -355,7 +388,13 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     throw UsageError("--t0 and --t1 must lie in [0, 1] (normalised animation time)");
   if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
   if (o.steps == 0) o.keyframes.resize(1);  // adapt once, at the first time
+  const auto start = std::chrono::steady_clock::now();
+  if (o.max_seconds > 0)
+    o.adapt.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(o.max_seconds));
   std::unique_ptr<Surface> surface = build_scene(o, log);
+  const double preparation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RunOutputs written;
   check_outputs(o, written);
   std::unique_ptr<StatsCsvWriter> csv;
@@ -380,14 +419,11 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
     throw UsageError(e.what());
   }
   surface->set_time(o.keyframes.front());
-  if (o.max_seconds > 0)
-    o.adapt.deadline = std::chrono::steady_clock::now() +
-                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                           std::chrono::duration<double>(o.max_seconds));
   Adapter adapter(*surface, o.adapt, criteria_for(o, *surface));
   RunSummary summary;
   summary.scene = o.scene;
   summary.steps = static_cast<int>(step_times(o).size());
+  summary.preparation_seconds = preparation_seconds;
   std::vector<double> step_seconds;
   try {
     run_steps(o, adapter, fields, csv.get(), exporter.get(), frames.get(), summary, step_seconds,
@@ -413,6 +449,7 @@ int run_command(const RunOptions& options, std::ostream& out, std::ostream& log)
                    step_seconds.end());
   summary.seconds_per_step_median = step_seconds[step_seconds.size() / 2];
   summary.quality = measure_quality(adapter.mesh());
+  summary.measure_resident_memory();
   if (frames && !o.quiet)
     log << "wrote " << frames->frames() << " frame(s) to " << o.render_dir << "\n";
   // Budget hits are reported even with --quiet: the result is not what was asked for.

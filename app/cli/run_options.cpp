@@ -97,6 +97,11 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError(k + ": " + e.what());
          }
        }},
+      {"--intensity-map",
+       [](RunOptions& o, auto& k, auto& v) {
+         if (v != "gray" && v != "viridis") throw UsageError(k + " must be gray or viridis");
+         o.colors.intensity_viridis = v == "viridis";
+       }},
       {"--steps", [](RunOptions& o, auto& k, auto& v) { o.steps = parse_int(k, v, 0, kMaxSteps); }},
       {"--threshold",
        [](RunOptions& o, auto& k, auto& v) {
@@ -157,6 +162,7 @@ const std::map<std::string, Setter>& valued_options() {
        }},
       {"--volume", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("volume", v); }},
       {"--mask", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("mask", v); }},
+      {"--atlas", [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("atlas", v); }},
       {"--implicit",
        [](RunOptions& o, auto&, auto& v) { o.scene_text.emplace_back("implicit", v); }},
       // --height is both the image height (DESIGN.md, --render) and the height-field formula
@@ -238,11 +244,9 @@ void validate(RunOptions& o) {
   if (o.edge_length < 0) throw UsageError("--edge-length must be positive");
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw UsageError("--width and --height must be between 16 and 16384 pixels");
-  const char* colors[] = {"error", "curvature", "intensity", "valence", "level", "shaded"};
-  bool known = false;
-  for (const char* c : colors) known = known || o.color == c;
-  if (!known)
-    throw UsageError("--color must be one of error, curvature, intensity, valence, level, shaded");
+  if (!parse_color_mode(o.color))
+    throw UsageError(
+        "--color must be one of error, curvature, intensity, region, valence, level, shaded");
 }
 
 }  // namespace
@@ -301,16 +305,21 @@ Adapts the scene's base mesh to S(t0), then takes N steps to t1, keeping every s
 error within T + eps with few triangles (de Goes et al. 2006). Progress goes to stderr;
 the last line of stdout is a JSON summary: the last step's triangles, vertices,
 max_sample_error, mean_sample_error; over the run splits, welds, seconds_per_step
-(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles;
-the final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
+(median), peak_triangles, worst_max_sample_error (and their steps), keyframe_triangles,
+resident_mb and peak_resident_mb (the process's memory at the end and at its peak); the
+final mesh's valence_min, valence_max, min_angle_deg, ... Bad input: one line on
 stderr, exit status 2, and none of the run's output files.
 
 Scene:
   --scene NAME           sphere | capsule-bend | sinc | twist | mri | expr  [capsule-bend]
   --param KEY=VALUE      set a scene parameter (repeatable; 'dynamesh-cli scenes' lists them)
-  --volume FILE          mri: a NIfTI brain volume (.nii or .nii.gz)
+  --volume FILE|DIR      mri: a NIfTI volume (.nii or .nii.gz), a brain or a whole head
+                         (the brain is then extracted), or a folder of one DICOM series
+                         (converted with dcm2niix)
   --mask FILE            mri: a brain mask on the volume's grid (nonzero = brain, from BET,
                          SynthStrip, ...), used instead of the built-in segmentation
+  --atlas FILE           mri: a label volume in the scan's space (names from FILE.nii.txt,
+                         "index name" lines) for --color region; Colin27: AAL by default
   --implicit EXPR | --height-field EXPR | --parametric "X;Y;Z"   expr: a typed surface
                          (--height EXPR works too when EXPR is not a bare whole number)
   --bounds, --domain, --periodic, --base-mesh FILE          expr: its extent and base mesh
@@ -321,17 +330,19 @@ Time:
                          [50]; step 0 is the initial adaptation, so N steps give N+1 rows
 Adaptation:
   --threshold T          target geometric error, scene units  [the scene's: 0.008; mri 0.5 mm]
-  --epsilon E            hysteresis: weld below T-E, split above T+E, 0 <= E < T  [T/4]
+  --epsilon E            hysteresis: split above T+E, weld below T (README), 0 <= E < T  [T/4]
   --density D            samples per unit area, at least 9 per triangle  [the scene's: 2000;
                          mri 2 per mm^2]
   --edge-length L        target edge length (sphere: its x >= 0 half; elsewhere: a cap)
   --max-triangles M      refinement budget (reported when hit)  [2000000]
   --max-samples S        sample budget: refinement stops beyond S samples (reported)
                          [50000000]
-  --max-seconds S        wall-time budget: refinement and stepping stop after S seconds,
+  --max-seconds S        wall-time budget from the start (loading included; a load that
+                         overruns it is refused): refinement and stepping stop after S seconds,
                          the run ends with what it has (reported)  [no limit]
   --max-memory MB        refused before starting when the budgets above could need more
-                         memory than MB MiB (an estimate)  [4096]
+                         memory than MB MiB (an estimate; mri: also its preprocessing, about
+                         40 bytes per voxel)  [4096]
   --seed S               sample jitter seed  [1]
   --sampling MODE        predictive: re-measure only faces whose error may have left the
                          band since last measured; full: every face every step  [predictive]
@@ -352,8 +363,11 @@ Output:
                          --color field), and DIR/frames.pvd: open it in ParaView to play them
   --render DIR           a PNG every --export-every K steps, rendered offscreen (no display
                          needed), --size WxH or --width W --height H  [1280x960]
-  --color MODE           error | curvature | intensity (mri) | valence | level | shaded
+  --color MODE           error | curvature | intensity (mri) | region (mri with an atlas) |
+                         valence | level | shaded
                          [error: yellow = none, green, red = at or beyond T]
+  --intensity-map M      intensity colours: gray or viridis (perceptual)  [gray]; the
+                         window is the scan's 1st-99th percentile inside the brain
   --color-range R        what curvature, intensity and level colours span: frame (each
                          frame's own), first (the first frame's), run (the whole run's),
                          or MIN,MAX  [frame]

@@ -1,6 +1,7 @@
 #include "app/cli/run_summary.h"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace dynamesh {
@@ -14,7 +15,25 @@ std::string number(double x) {
   return out.str();
 }
 
+// A "Name:   1234 kB" field of /proc/self/status in MiB; -1 when absent.
+double status_field_mb(const std::string& text, const std::string& name) {
+  const auto at = text.find("\n" + name + ":");
+  if (at == std::string::npos) return -1.0;
+  std::istringstream in(text.substr(at + name.size() + 2));
+  double kb = -1.0;
+  in >> kb;
+  return in ? kb / 1024.0 : -1.0;
+}
+
 }  // namespace
+
+void RunSummary::measure_resident_memory() {
+  std::ifstream in("/proc/self/status");
+  std::ostringstream text;
+  text << "\n" << in.rdbuf();
+  resident_mb = status_field_mb(text.str(), "VmRSS");
+  peak_resident_mb = status_field_mb(text.str(), "VmHWM");
+}
 
 void RunSummary::add(const StepStats& s) {
   total_splits += s.splits;
@@ -45,6 +64,7 @@ std::string to_json(const RunSummary& s) {
       << ",\"mean_sample_error\":" << number(l.mean_error) << ",\"samples\":" << l.samples
       << ",\"splits\":" << s.total_splits << ",\"welds\":" << s.total_welds
       << ",\"seconds_per_step\":" << number(s.seconds_per_step_median)
+      << ",\"preparation_seconds\":" << number(s.preparation_seconds)
       << ",\"valence_min\":" << s.quality.valence_min
       << ",\"valence_max\":" << s.quality.valence_max
       << ",\"min_angle_deg\":" << number(s.quality.min_angle_deg)
@@ -64,7 +84,10 @@ std::string to_json(const RunSummary& s) {
   for (std::size_t i = 0; i < s.keyframe_triangles.size(); ++i)
     out << (i ? "," : "") << s.keyframe_triangles[i];
   out << "]"
-      << ",\"rebuilds\":" << s.rebuilds << ",\"local_repairs\":" << s.local_repairs << ",\"topology_events\":[";
+      << ",\"resident_mb\":" << number(s.resident_mb >= 0 ? s.resident_mb : NAN)
+      << ",\"peak_resident_mb\":" << number(s.peak_resident_mb >= 0 ? s.peak_resident_mb : NAN)
+      << ",\"rebuilds\":" << s.rebuilds << ",\"local_repairs\":" << s.local_repairs
+      << ",\"topology_events\":[";
   for (std::size_t i = 0; i < s.topology_events.size(); ++i) {
     const TopologyEvent& e = s.topology_events[i];
     out << (i ? "," : "") << "{\"time\":" << number(e.time) << ",\"kind\":\"" << to_string(e.kind)

@@ -15,6 +15,7 @@ struct RunSummary {
   StepStats last;
   std::size_t total_splits = 0, total_welds = 0;
   double seconds_per_step_median = 0.0;
+  double preparation_seconds = 0.0;  // building the scene (mri: reading and preprocessing)
   MeshQuality quality;
   bool budget_hit = false;  // in any step
   bool sample_budget_hit = false, time_budget_hit = false;
@@ -32,7 +33,11 @@ struct RunSummary {
   void add(const StepStats& s);
   std::vector<TopologyEvent> topology_events;  // over the run (issue 16)
   std::size_t rebuilds = 0;                    // steps whose mesh was rebuilt from F
-  std::size_t local_repairs = 0;  // events repaired locally (in steps not rebuilt)
+  std::size_t local_repairs = 0;               // events repaired locally (in steps not rebuilt)
+  // The process's resident memory at the end of the run and its peak (Linux's VmRSS and
+  // VmHWM, MiB; negative when unknown): a run's memory follows its mesh (issue 15's soak).
+  double resident_mb = -1.0, peak_resident_mb = -1.0;
+  void measure_resident_memory();
 };
 
 std::string to_json(const RunSummary& s);

@@ -15,6 +15,7 @@ constexpr ModeInfo kModes[] = {
     {ColorMode::kValence, "valence", "valence", "valence"},
     {ColorMode::kLevel, "level", "level", "refinement level"},
     {ColorMode::kIntensity, "intensity", "intensity", "MR intensity"},
+    {ColorMode::kRegion, "region", "", "anatomical region"},
 };
 
 const ModeInfo& info(ColorMode mode) {

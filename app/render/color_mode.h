@@ -9,13 +9,17 @@
 
 namespace dynamesh {
 
-enum class ColorMode { kShaded, kError, kCurvature, kValence, kLevel, kIntensity };
+// kIntensity and kRegion come from the scan itself where the snapshot carries one (mri): the
+// renderer samples its 3-D texture per fragment (kIntensity falls back to the per-vertex
+// "intensity" field without it).
+enum class ColorMode { kShaded, kError, kCurvature, kValence, kLevel, kIntensity, kRegion };
 
-inline constexpr std::array<ColorMode, 6> kAllColorModes = {
-    ColorMode::kShaded,  ColorMode::kError, ColorMode::kCurvature,
-    ColorMode::kValence, ColorMode::kLevel, ColorMode::kIntensity};
+inline constexpr std::array<ColorMode, 7> kAllColorModes = {
+    ColorMode::kShaded, ColorMode::kError,     ColorMode::kCurvature, ColorMode::kValence,
+    ColorMode::kLevel,  ColorMode::kIntensity, ColorMode::kRegion};
 
-// Command-line name: "shaded", "error", "curvature", "valence", "level", "intensity".
+// Command-line name: "shaded", "error", "curvature", "valence", "level", "intensity",
+// "region".
 std::string_view color_mode_name(ColorMode mode);
 std::optional<ColorMode> parse_color_mode(std::string_view name);
 // Name of the MeshSnapshot field the mode shows; empty for kShaded.

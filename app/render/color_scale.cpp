@@ -117,7 +117,7 @@ std::vector<int> discrete_labels(const ColorScale& scale, int max_labels) {
 }
 
 bool has_color_scale(ColorMode mode, const FieldStats& stats) {
-  return mode != ColorMode::kShaded && stats.present;
+  return mode != ColorMode::kShaded && mode != ColorMode::kRegion && stats.present;
 }
 
 namespace {
@@ -165,6 +165,7 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
   s.label = std::string(color_mode_label(mode));
   switch (mode) {
     case ColorMode::kShaded:
+    case ColorMode::kRegion:  // categories from the atlas: no scale
       break;
     case ColorMode::kError:
       s.map = settings.error_viridis ? ColormapId::kViridis : ColormapId::kErrorYellowGreenRed;
@@ -193,7 +194,7 @@ ColorScale color_scale(ColorMode mode, const ColorSettings& settings, const Fiel
       s.discrete = true;
       break;
     case ColorMode::kIntensity: {
-      s.map = ColormapId::kGray;
+      s.map = settings.intensity_viridis ? ColormapId::kViridis : ColormapId::kGray;
       const double window =
           settings.intensity_auto ? stats.high - stats.low : settings.intensity_window;
       const double level =

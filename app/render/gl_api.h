@@ -62,6 +62,7 @@ namespace dynamesh::gl {
   X(RENDERBUFFERSTORAGEMULTISAMPLE, RenderbufferStorageMultisample) \
   X(SHADERSOURCE, ShaderSource)                                     \
   X(TEXIMAGE2D, TexImage2D)                                         \
+  X(TEXIMAGE3D, TexImage3D)                                         \
   X(TEXPARAMETERI, TexParameteri)                                   \
   X(UNIFORM1F, Uniform1f)                                           \
   X(UNIFORM1I, Uniform1i)                                           \

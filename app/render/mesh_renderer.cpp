@@ -29,6 +29,7 @@ MeshRenderer::~MeshRenderer() {
 
 void MeshRenderer::set_geometry(const MeshSnapshot& snapshot) {
   mesh_.upload_geometry(snapshot);
+  volume_.set(snapshot.volume);
   bounds_ = SceneBounds::from_points(snapshot.positions, snapshot.bounds);
 }
 
@@ -40,6 +41,17 @@ void MeshRenderer::set_scalar(const MeshSnapshot& snapshot, ColorMode mode) {
   const ScalarField* field = name.empty() ? nullptr : snapshot.field(name);
   const bool usable = field != nullptr && field->values.size() == snapshot.n_vertices();
   scalar_stats_ = usable ? field_stats(field->values) : FieldStats{};
+  if (mode == ColorMode::kIntensity && volume_.has_intensity()) {
+    // The scan's robust window, the same for every frame and layer: grey values stay put.
+    const Vec2 w = volume_.image()->window;
+    scalar_stats_ = FieldStats{true,
+                               static_cast<float>(w[0]),
+                               static_cast<float>(w[1]),
+                               static_cast<float>(w[0]),
+                               static_cast<float>(w[1]),
+                               static_cast<float>(0.5 * (w[0] + w[1])),
+                               1};
+  }
   if (range_restarted_ && scalar_stats_.present) {
     first_stats_ = scalar_stats_;
     if (!run_stats_given_) run_stats_ = scalar_stats_;
@@ -48,6 +60,11 @@ void MeshRenderer::set_scalar(const MeshSnapshot& snapshot, ColorMode mode) {
     run_stats_ = merge(run_stats_, scalar_stats_);
   }
   mesh_.upload_scalar(usable ? &field->values : nullptr);
+}
+
+bool MeshRenderer::samples_volume(ColorMode mode) const {
+  return (mode == ColorMode::kIntensity && volume_.has_intensity()) ||
+         (mode == ColorMode::kRegion && volume_.has_labels());
 }
 
 void MeshRenderer::restart_color_range(const FieldStats& whole_run) {
@@ -63,8 +80,12 @@ bool MeshRenderer::shows_color_scale(const RenderStyle& style) const {
 
 ColorScale MeshRenderer::color_scale(const RenderStyle& style) const {
   const FieldStats* range = &scalar_stats_;
-  if (style.colors.range == ColorRange::kFirstFrame && first_stats_.present) range = &first_stats_;
-  if (style.colors.range == ColorRange::kRun && run_stats_.present) range = &run_stats_;
+  // The scan's window is the same for every frame already (first frame = whole run).
+  const bool fixed_by_scan = samples_volume(style.mode);
+  if (!fixed_by_scan && style.colors.range == ColorRange::kFirstFrame && first_stats_.present)
+    range = &first_stats_;
+  if (!fixed_by_scan && style.colors.range == ColorRange::kRun && run_stats_.present)
+    range = &run_stats_;
   return dynamesh::color_scale(style.mode, style.colors, *range);
 }
 
@@ -117,6 +138,15 @@ void MeshRenderer::draw(const Camera& camera, const RenderStyle& style,
   p.set("u_wire_color", style.wire_color);
   p.set("u_light2_direction", glm::vec3(-0.5f, 0.8f, 0.35f));
   p.set("u_ambient", 0.22f);
+  const bool from_volume = samples_volume(style.mode);
+  p.set("u_volume_mode", !from_volume ? 0 : style.mode == ColorMode::kIntensity ? 1 : 2);
+  p.set("u_intensity", 1);
+  p.set("u_labels", 2);
+  if (from_volume) {
+    volume_.bind();
+    p.set("u_world_to_texture", volume_.world_to_texture());
+    p.set("u_world_to_label", volume_.world_to_label());
+  }
   mesh_.draw();
   gl::UseProgram(0);
 }

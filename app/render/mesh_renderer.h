@@ -3,6 +3,9 @@
 // colour modes mapping a per-vertex field through a colour map. Works on any context whose
 // functions were loaded with gl::load_functions (OSMesa offscreen, GLFW in the viewer).
 //
+// A snapshot that carries its scan (mri) is coloured per fragment from it in the intensity
+// and region modes (volume_textures.h); the scan goes to the GPU once, not per snapshot.
+//
 // Use: set_mesh() when a new snapshot arrives (uploads once; positions only when the
 // connectivity is unchanged), set_scalar() when only the colour mode changes, then
 // clear() + draw() every frame.
@@ -16,6 +19,7 @@
 #include "app/render/color_scale.h"
 #include "app/render/gpu_mesh.h"
 #include "app/render/render_style.h"
+#include "app/render/volume_textures.h"
 #include "core/adapt/mesh_snapshot.h"
 
 namespace dynamesh {
@@ -55,6 +59,12 @@ class MeshRenderer {
   // whole run before drawing it) instead of growing with each field shown.
   void restart_color_range(const FieldStats& whole_run = {});
   const UploadCounters& uploads() const { return mesh_.counters(); }
+  // The scan of the last snapshot (null for analytic scenes) and how often it was uploaded.
+  const std::shared_ptr<const VolumeImage>& volume() const { return volume_.image(); }
+  int volume_uploads() const { return volume_.uploads(); }
+  // Whether `mode` is drawn from the scan per fragment (intensity, region) rather than from
+  // a per-vertex field.
+  bool samples_volume(ColorMode mode) const;
   std::size_t n_triangles() const { return mesh_.n_triangles(); }
 
  private:
@@ -62,6 +72,7 @@ class MeshRenderer {
 
   std::unique_ptr<ShaderProgram> program_;
   GpuMesh mesh_;
+  VolumeTextures volume_;
   SceneBounds bounds_;
   ColorMode scalar_mode_ = ColorMode::kShaded;
   FieldStats scalar_stats_;

@@ -14,11 +14,14 @@ namespace dynamesh {
 enum class ColorRange { kFrame, kFirstFrame, kRun, kFixed };
 
 struct ColorSettings {
-  double threshold = 0.008;         // error mode: red at and beyond this (the adapter's T)
-  bool error_viridis = false;       // error mode: viridis instead of yellow-green-red
-  bool intensity_auto = true;       // intensity: window/level from the field's 2nd-98th pct.
-  double intensity_window = 100.0;  // intensity: width of the grey ramp
-  double intensity_level = 50.0;    // intensity: value shown mid-grey
+  double threshold = 0.008;    // error mode: red at and beyond this (the adapter's T)
+  bool error_viridis = false;  // error mode: viridis instead of yellow-green-red
+  // intensity: the scan's robust window (1st-99th percentile inside the brain; without a
+  // scan, the field's 2nd-98th percentiles) instead of intensity_window / intensity_level.
+  bool intensity_auto = true;
+  double intensity_window = 100.0;  // intensity: width of the ramp
+  double intensity_level = 50.0;    // intensity: value shown mid-ramp
+  bool intensity_viridis = false;   // intensity: viridis (perceptual) instead of grey
   ColorRange range = ColorRange::kFrame;
   double range_min = 0.0, range_max = 1.0;  // kFixed: the values at the map's two ends
 

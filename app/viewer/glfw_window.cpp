@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 #include "app/render/gl_api.h"
 #include "app/render/gl_loader.h"
@@ -99,6 +100,10 @@ void GlfwWindow::install_callbacks() {
   });
   glfwSetKeyCallback(window_, [](GLFWwindow* w, int, int, int, int) { count(w); });
   glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { count(w); });
+  glfwSetDropCallback(window_, [](GLFWwindow* w, int n, const char** paths) {
+    count(w);
+    for (int i = 0; i < n; ++i) self(w)->dropped_.emplace_back(paths[i]);
+  });
   glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int) { count(w); });
   glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { count(w); });
   glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { count(w); });
@@ -131,6 +136,10 @@ double GlfwWindow::take_scroll() {
   const double s = scroll_;
   scroll_ = 0.0;
   return s;
+}
+
+std::vector<std::string> GlfwWindow::take_dropped_paths() {
+  return std::exchange(dropped_, {});
 }
 
 void GlfwWindow::begin_ui_frame() {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -44,6 +45,8 @@ class GlfwWindow {
   std::uint64_t input_events() const { return input_events_; }
   // Mouse-wheel turns since the last call (positive: away from the user).
   double take_scroll();
+  // Files and folders dropped onto the window since the last call.
+  std::vector<std::string> take_dropped_paths();
   void begin_ui_frame();
   void end_ui_frame();  // renders ImGui's draw data into the bound framebuffer
   void swap();
@@ -55,6 +58,7 @@ class GlfwWindow {
   std::string renderer_;
   std::uint64_t input_events_ = 0;
   double scroll_ = 0.0;
+  std::vector<std::string> dropped_;
 };
 
 }  // namespace dynamesh

@@ -64,7 +64,7 @@ AdaptOptions adapt_options(const SimulationControls& c) {
   return o;
 }
 
-Simulation::Simulation() = default;
+Simulation::Simulation(ProgressCallback progress) : progress_(std::move(progress)) {}
 Simulation::~Simulation() = default;
 
 std::unique_ptr<Surface> Simulation::surface_for(const SimulationControls& c) {
@@ -91,7 +91,7 @@ std::unique_ptr<Surface> Simulation::surface_for(const SimulationControls& c) {
       // order and says what is wrong when nothing works.
     }
   }
-  return make_scene(c.scene, c.scene_parameters, c.scene_text);
+  return make_scene(c.scene, c.scene_parameters, c.scene_text, progress_);
 }
 
 void Simulation::rebuild(const StepRequest& request) {

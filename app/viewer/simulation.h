@@ -73,7 +73,9 @@ struct StepResult {
 
 class Simulation {
  public:
-  Simulation();
+  // `progress` (optional, called on the worker thread) hears the stages of building a scene
+  // from a file (the mri scan: reading, segmenting, distance transform).
+  explicit Simulation(ProgressCallback progress = {});
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -93,6 +95,7 @@ class Simulation {
   SimulationControls built_;                  // the controls surface_ and adapter_ run with
   std::optional<SimulationControls> failed_;  // the controls of the last failure
   std::string failure_;
+  ProgressCallback progress_;
 };
 
 }  // namespace dynamesh

@@ -52,6 +52,11 @@ std::uint64_t SimulationDriver::results_published() const {
   return published_;
 }
 
+std::string SimulationDriver::progress() const {
+  std::lock_guard lock(mutex_);
+  return progress_;
+}
+
 void SimulationDriver::run() {
   // Below the UI thread: on a machine with few cores the adapter's threads (OpenMP's team
   // inherits this thread's niceness) must not take the cores that draw the window.
@@ -71,6 +76,7 @@ void SimulationDriver::run() {
     latest_ = std::move(result);
     ++published_;
     computing_ = false;
+    progress_.clear();
     if (on_result_) {
       lock.unlock();
       on_result_();

@@ -36,11 +36,17 @@ class SimulationDriver {
   // the error with the last good snapshot.
   StepResult latest_result() const;
   std::uint64_t results_published() const;
+  // The stage of loading a scene from a file, e.g. "distance transform 40%"; empty when none
+  // is loading.
+  std::string progress() const;
 
  private:
   void run();
 
-  Simulation simulation_;
+  Simulation simulation_{[this](std::string_view stage, double fraction) {
+    std::lock_guard lock(mutex_);
+    progress_ = std::string(stage) + " " + std::to_string(static_cast<int>(100 * fraction)) + "%";
+  }};
   std::function<void()> on_result_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
@@ -52,6 +58,7 @@ class SimulationDriver {
   bool stop_ = false;
   StepResult latest_;
   std::uint64_t published_ = 0;
+  std::string progress_;
   std::thread worker_;  // last: starts after everything above exists
 };
 

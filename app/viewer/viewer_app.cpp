@@ -19,9 +19,11 @@
 #include "app/render/mesh_renderer.h"
 #include "app/render/png_file.h"
 #include "app/render/render_target.h"
+#include "app/render/surface_pick.h"
 #include "app/viewer/frame_timing.h"
 #include "app/viewer/glfw_window.h"
 #include "app/viewer/simulation_driver.h"
+#include "app/viewer/slice_panel.h"
 #include "app/viewer/stats_history.h"
 #include "app/viewer/video_recorder.h"
 #include "app/viewer/viewer_panel.h"
@@ -81,6 +83,7 @@ struct ViewKey {
 struct Drag {
   int button = -1;
   glm::vec2 last{0.0f};
+  glm::vec2 start{0.0f};  // where the button went down: a release there is a click
 };
 
 class ViewerApp {
@@ -121,6 +124,14 @@ class ViewerApp {
   glm::ivec4 view_rect() const;  // x, y, width, height of the 3D view in framebuffer pixels
   glm::vec2 cursor_ndc() const;
   void handle_mouse();
+  // A click on the layer: the probed point moves to where the cursor's ray meets the mesh.
+  void pick(const glm::vec2& ndc);
+  // A scan dropped on the window (or typed): the mri scene on it, loaded on the worker.
+  void open_scan(const std::string& path);
+  // What the scan says at the probed point; nullopt without a scan or a point.
+  std::optional<VolumeProbe> current_probe() const;
+  // The probed point marked in the 3D view, and the slices through it.
+  void draw_probe(const VolumeProbe& probe, PanelActions& actions, bool report);
   void handle_keys(PanelActions& a);
   void apply(const PanelActions& a);
   void render_frame();
@@ -129,7 +140,7 @@ class ViewerApp {
   void toggle_recording();
   void start_recording(const std::string& dir, const std::string& stem);
   bool save_settings();  // false (and why in status_) when it fails
-  void report_widgets(const std::vector<WidgetRect>& widgets);
+  void report_widgets(const std::vector<WidgetRect>& widgets, const VolumeProbe* probe);
   int finish_scripted(double seconds);
   // Whether anything could change the picture: input, a result, playing, a scripted run.
   bool needs_frame() const;
@@ -164,6 +175,8 @@ class ViewerApp {
   std::string error_, status_;
   VideoRecorder recorder_;
   Drag drag_;
+  SlicePanel slices_;
+  std::string progress_shown_;  // the loading progress the panel shows
   float fps_ = 0.0f;
   // Redraw only when something happened: input, a new result, or frames ImGui still needs.
   std::uint64_t input_events_seen_ = 0;
@@ -317,11 +330,14 @@ void ViewerApp::handle_mouse() {
   if (drag_.button < 0) {
     if (ImGui::GetIO().WantCaptureMouse) return;
     for (int b : {GLFW_MOUSE_BUTTON_LEFT, GLFW_MOUSE_BUTTON_RIGHT, GLFW_MOUSE_BUTTON_MIDDLE}) {
-      if (glfwGetMouseButton(w, b) == GLFW_PRESS) drag_ = {b, p};
+      if (glfwGetMouseButton(w, b) == GLFW_PRESS) drag_ = {b, p, p};
     }
     return;
   }
   if (glfwGetMouseButton(w, drag_.button) != GLFW_PRESS) {
+    // Released within 3 pixels of where it went down: a click, not an orbit.
+    const glm::vec2 pixels = 0.5f * (p - drag_.start) * glm::vec2(v.z, v.w);
+    if (drag_.button == GLFW_MOUSE_BUTTON_LEFT && glm::length(pixels) <= 3.0f) pick(drag_.start);
     drag_.button = -1;
     return;
   }
@@ -332,6 +348,63 @@ void ViewerApp::handle_mouse() {
     state_.camera.pan(p - drag_.last, aspect);
   }
   drag_.last = p;
+}
+
+void ViewerApp::pick(const glm::vec2& ndc) {
+  if (!snapshot_ || !snapshot_->volume) return;  // only a scan has something to say
+  const glm::ivec4 v = view_rect();
+  const auto hit = pick_surface(*snapshot_, state_.camera, renderer_.bounds(),
+                                float(v.z) / float(std::max(1, v.w)), ndc);
+  if (hit) state_.probe = *hit;
+}
+
+void ViewerApp::open_scan(const std::string& path) {
+  if (state_.controls.scene != "mri") switch_scene(state_, "mri");
+  state_.controls.scene_text = {{"volume", path}};
+  state_.probe.reset();
+  status_ = "opening " + path;
+  request(state_.time, true);
+}
+
+std::optional<VolumeProbe> ViewerApp::current_probe() const {
+  const std::shared_ptr<const VolumeImage>& image = renderer_.volume();
+  if (!image || !state_.probe || !snapshot_) return std::nullopt;
+  // The layer's depth: depth_max * t (the mri scene's isolayer at time t).
+  double depth = 0.0;
+  for (const SurfaceParameter& p : running_parameters_)
+    if (p.name == "depth_max") depth = p.value * snapshot_->time;
+  return probe_volume(*image, *state_.probe, depth);
+}
+
+void ViewerApp::draw_probe(const VolumeProbe& probe, PanelActions& actions, bool report) {
+  const glm::ivec4 v = view_rect();
+  const glm::ivec2 fb = window_.framebuffer_size(), win = window_.window_size();
+  const float to_window = fb.x > 0 ? float(win.x) / float(fb.x) : 1.0f;
+  // The mark: the point projected as the renderer projects the mesh.
+  const float aspect = float(v.z) / float(std::max(1, v.w));
+  const SceneBounds& b = renderer_.bounds();
+  const glm::vec4 clip = state_.camera.projection(aspect, b) * state_.camera.view() *
+                         state_.camera.model(b) *
+                         glm::vec4(float(probe.position.x()), float(probe.position.y()),
+                                   float(probe.position.z()), 1.0f);
+  if (clip.w > 0.0f) {
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    const ImVec2 at((float(v.x) + 0.5f * (ndc.x + 1.0f) * float(v.z)) * to_window,
+                    0.5f * (1.0f - ndc.y) * float(v.w) * to_window);
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    draw->AddCircle(at, 7.0f, IM_COL32(255, 60, 60, 255), 16, 2.0f);
+    draw->AddCircleFilled(at, 2.5f, IM_COL32(255, 60, 60, 255));
+  }
+  const std::shared_ptr<const VolumeImage>& image = renderer_.volume();
+  const ColorScale scale = renderer_.color_scale(state_.style);
+  const Vec2 window =
+      state_.style.mode == ColorMode::kIntensity ? Vec2(scale.min, scale.max) : image->window;
+  const float x = (state_.show_panel ? kPanelWidth : 0.0f) + 8.0f;
+  const float side = 170.0f;
+  if (const auto moved =
+          slices_.draw(*image, probe.position, snapshot_, window, x, float(win.y) - side - 48.0f,
+                       side, report ? &actions.widgets : nullptr))
+    state_.probe = *moved;
 }
 
 void ViewerApp::handle_keys(PanelActions& a) {
@@ -463,10 +536,10 @@ bool ViewerApp::save_settings() {
   }
 }
 
-void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets) {
+void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets, const VolumeProbe* probe) {
   const std::string text = widget_report(widgets, state_.controls,
                                          {results_seen_, driver_.busy(), snapshot_.get(),
-                                          last_stats_.samples, last_stats_.mean_error});
+                                          last_stats_.samples, last_stats_.mean_error, probe});
   if (text == widget_report_written_) return;
   try {
     AtomicFile file(widget_report_path_);  // whole, so a reader never sees half of it
@@ -516,7 +589,8 @@ int ViewerApp::finish_scripted(double seconds) {
 
 bool ViewerApp::needs_frame() const {
   return args_.frames >= 0 || args_.orbit || frames_to_draw_ > 0 || drag_.button >= 0 ||
-         driver_.results_published() != results_seen_ || (state_.playing && !driver_.busy());
+         driver_.results_published() != results_seen_ || (state_.playing && !driver_.busy()) ||
+         driver_.progress() != progress_shown_;
 }
 
 bool ViewerApp::frame(bool timed_out) {
@@ -552,12 +626,22 @@ bool ViewerApp::frame(bool timed_out) {
   info.has_scale = renderer_.shows_color_scale(state_.style);
   info.scale = renderer_.color_scale(state_.style);
   info.report_widgets = !widget_report_path_.empty();
+  for (const std::string& path : window_.take_dropped_paths()) open_scan(path);
+  const std::optional<VolumeProbe> probe = current_probe();
+  if (const auto& image = renderer_.volume()) {
+    info.has_scan = true;
+    info.scan_window = image->window;
+  }
+  info.probe = probe ? &*probe : nullptr;
+  progress_shown_ = driver_.progress();
+  info.progress = progress_shown_;
   PanelActions actions;
   if (state_.show_panel) actions = draw_panel(state_, info);
   if (info.has_scale && state_.show_colorbar) {
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     draw_colorbar_window(info.scale, size.x, size.y);
   }
+  if (probe && snapshot_) draw_probe(*probe, actions, info.report_widgets);
   handle_mouse();
   handle_keys(actions);
   // Playing: the next step once the last one is on screen (so none is skipped, and a
@@ -568,7 +652,7 @@ bool ViewerApp::frame(bool timed_out) {
   }
   if (args_.orbit) state_.camera.orbit({0.0f, 0.0f}, {0.004f, 0.0f});  // as if dragged
   apply(actions);
-  if (info.report_widgets) report_widgets(actions.widgets);
+  if (info.report_widgets) report_widgets(actions.widgets, probe ? &*probe : nullptr);
   render_frame();
   // Both read this frame, drawn but not yet swapped.
   if (actions.screenshot)

@@ -105,9 +105,11 @@ bool is_whole_number(const std::string& text) {
 const char* text_option_key(const std::string& opt, const std::vector<std::string>& args,
                             std::size_t i) {
   static constexpr std::pair<const char*, const char*> kKeys[] = {
-      {"--volume", "volume"},         {"--implicit", "implicit"},  {"--height-field", "height"},
-      {"--parametric", "parametric"}, {"--bounds", "bounds"},      {"--domain", "domain"},
-      {"--periodic", "periodic"},     {"--base-mesh", "base-mesh"}};
+      {"--volume", "volume"},       {"--implicit", "implicit"},
+      {"--height-field", "height"}, {"--parametric", "parametric"},
+      {"--bounds", "bounds"},       {"--domain", "domain"},
+      {"--periodic", "periodic"},   {"--base-mesh", "base-mesh"},
+      {"--mask", "mask"},           {"--atlas", "atlas"}};
   for (const auto& [option, key] : kKeys)
     if (opt == option) return key;
   if (opt == "--height" && i + 1 < args.size() && !is_whole_number(args[i + 1])) return "height";
@@ -118,10 +120,12 @@ const char* text_option_key(const std::string& opt, const std::vector<std::strin
 
 std::string viewer_usage() {
   return "usage: dynamesh [--scene NAME] [--param KEY=VALUE] [--volume FILE] [--t0 T] [--t1 T]\n"
+         "                [--mask FILE] [--atlas FILE] (mri: brain mask, label atlas)\n"
          "                [--keyframes T0,T1,...] (visited in order, --steps steps each)\n"
          "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
          "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
-         "                [--color shaded|error|curvature|valence|level|intensity] [--play]\n"
+         "                [--color shaded|error|curvature|valence|level|intensity|region]\n"
+         "                [--play]\n"
          "                [--color-range frame|first|run|MIN,MAX] [--no-wireframe]\n"
          "                [--camera fit|AZ,EL[,DIST]] [--width W] [--height H]\n"
          "                [--state FILE | --fresh] [--version]\n"
@@ -271,7 +275,7 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       const auto mode = parse_color_mode(value());
       if (!mode)
         throw std::invalid_argument(
-            "--color expects shaded, error, curvature, valence, level or intensity");
+            "--color expects shaded, error, curvature, valence, level, intensity or region");
       s.style.mode = *mode;
     } else {
       throw std::invalid_argument("unknown option '" + opt + "' (dynamesh --help lists them)");

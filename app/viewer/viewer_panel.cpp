@@ -196,9 +196,47 @@ void playback_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   ImGui::SliderInt("steps t0..t1", &s.steps, 1, 1000);
   ImGui::TextDisabled("step %llu, t = %.4f%s", static_cast<unsigned long long>(info.last.step),
                       info.last.time, info.busy ? "  (computing)" : "");
+  if (info.busy && !info.progress.empty()) ImGui::Text("%s", info.progress.c_str());
 }
 
-void coloring_section(ViewerState& s, PanelActions& a) {
+// Window and level of the intensity colours; by default the scan's robust window (1st-99th
+// percentile inside the brain), the same for every frame and layer.
+void intensity_controls(ColorSettings& colors, const PanelInfo& info) {
+  const bool was_auto = colors.intensity_auto;
+  ImGui::Checkbox(info.has_scan ? "scan's window (1-99%)" : "auto window", &colors.intensity_auto);
+  if (was_auto && !colors.intensity_auto && info.has_scan) {
+    // Start adjusting from what is on screen.
+    colors.intensity_window = info.scan_window[1] - info.scan_window[0];
+    colors.intensity_level = 0.5 * (info.scan_window[0] + info.scan_window[1]);
+  }
+  if (!colors.intensity_auto) {
+    const double span = info.has_scan ? std::max(info.scan_window[1] - info.scan_window[0], 1.0)
+                                      : std::max(colors.intensity_window, 1.0);
+    const double w_lo = 0.01 * span, w_hi = 4.0 * span;
+    const double l_lo = (info.has_scan ? info.scan_window[0] : colors.intensity_level) - span,
+                 l_hi = (info.has_scan ? info.scan_window[1] : colors.intensity_level) + span;
+    ImGui::SliderScalar("window", ImGuiDataType_Double, &colors.intensity_window, &w_lo, &w_hi,
+                        "%.1f");
+    ImGui::SliderScalar("level", ImGuiDataType_Double, &colors.intensity_level, &l_lo, &l_hi,
+                        "%.1f");
+  }
+  ImGui::Checkbox("viridis", &colors.intensity_viridis);
+}
+
+// What the scan says at the probed point (a click on the layer or in a slice).
+void probe_lines(const VolumeProbe& p) {
+  ImGui::Separator();
+  ImGui::Text("point  %.1f, %.1f, %.1f mm", p.position.x(), p.position.y(), p.position.z());
+  if (p.inside)
+    ImGui::Text("voxel  %d, %d, %d", p.index[0], p.index[1], p.index[2]);
+  else
+    ImGui::TextDisabled("outside the volume");
+  ImGui::Text("intensity %.1f   layer depth %.1f mm", p.intensity, p.depth);
+  if (!p.region_name.empty()) ImGui::Text("region %s (%d)", p.region_name.c_str(), p.region);
+  ImGui::TextDisabled("click the layer or a slice to move the point");
+}
+
+void coloring_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderStyle& st = s.style;
   if (ImGui::BeginCombo("colour (C)", std::string(color_mode_label(st.mode)).c_str())) {
@@ -221,13 +259,11 @@ void coloring_section(ViewerState& s, PanelActions& a) {
         st.colors.range_max = st.colors.range_min + 1e-6;
     }
   }
-  if (st.mode == ColorMode::kIntensity) {
-    ImGui::Checkbox("auto window", &st.colors.intensity_auto);
-    if (!st.colors.intensity_auto) {
-      ImGui::InputDouble("window", &st.colors.intensity_window, 1.0, 10.0, "%.1f");
-      ImGui::InputDouble("level", &st.colors.intensity_level, 1.0, 10.0, "%.1f");
-    }
-  }
+  if (st.mode == ColorMode::kIntensity) intensity_controls(st.colors, info);
+  if (info.probe != nullptr)
+    probe_lines(*info.probe);
+  else if (info.has_scan)
+    ImGui::TextDisabled("click the layer: position, intensity, region");
   ImGui::Checkbox("wireframe (W)", &st.wireframe);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90);
@@ -340,7 +376,7 @@ PanelActions draw_panel(ViewerState& state, const PanelInfo& info) {
   scene_section(state, actions, info);
   adaptation_section(state, actions, info);
   playback_section(state, actions, info);
-  coloring_section(state, actions);
+  coloring_section(state, actions, info);
   statistics_section(state, info);
   output_section(actions, info);
   ImGui::PopItemWidth();

@@ -9,6 +9,7 @@
 #include "app/viewer/formula_examples.h"
 #include "app/viewer/stats_history.h"
 #include "app/viewer/viewer_state.h"
+#include "app/viewer/volume_probe.h"
 #include "app/viewer/widget_report.h"
 #include "core/surface/scene_registry.h"
 
@@ -42,6 +43,11 @@ struct PanelInfo {
   bool has_scale = false;
   ColorScale scale;
   bool report_widgets = false;  // a test asked where the widgets are (widget_report.h)
+  // The scan on screen (mri): its robust window, and the probed point when there is one.
+  bool has_scan = false;
+  Vec2 scan_window{Vec2::Zero()};
+  const VolumeProbe* probe = nullptr;
+  std::string progress;  // loading a scan: stage and percentage, while busy
 };
 
 constexpr float kPanelWidth = 340.0f;

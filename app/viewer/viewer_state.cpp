@@ -156,6 +156,7 @@ void visit_fields(State& s, Visit&& visit) {
   visit("intensity_auto", s.style.colors.intensity_auto);
   visit("intensity_window", s.style.colors.intensity_window);
   visit("intensity_level", s.style.colors.intensity_level);
+  visit("intensity_viridis", s.style.colors.intensity_viridis);
   visit("color_range", s.style.colors.range);
   visit("color_range_min", s.style.colors.range_min);
   visit("color_range_max", s.style.colors.range_max);
@@ -259,6 +260,7 @@ void switch_scene(ViewerState& state, const std::string& scene) {
   if (scene == c.scene) return;
   state.scene_settings[c.scene] = {c.threshold, c.epsilon, c.density, c.edge_length};
   c.scene = scene;
+  state.probe.reset();  // a point of the old scan
   c.scene_parameters.clear();
   c.scene_text.clear();
   SceneSettings next;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +64,9 @@ struct ViewerState {
   // `playhead` counts the steps taken along them. Not saved.
   std::vector<double> keyframes;
   int playhead = 0;
+  // The probed point (world mm; issue 14): a click on the layer or in a slice. Not saved:
+  // it belongs to the scan on screen.
+  std::optional<Vec3> probe;
 
   double time_step() const { return steps > 0 ? (t1 - t0) / steps : 0.0; }
   // Keyframes: the number of steps along all segments, and the time after `step` of them.

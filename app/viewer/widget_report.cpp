@@ -37,6 +37,12 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
         << "\nmean_aspect " << mean_aspect_ratio(*shown.mesh) << "\nsamples " << shown.samples
         << "\nmean_error " << shown.mean_error << '\n';
   }
+  if (const VolumeProbe* p = shown.probe) {
+    out << "probe " << p->position.x() << ' ' << p->position.y() << ' ' << p->position.z()
+        << "\nprobe_voxel " << p->index[0] << ' ' << p->index[1] << ' ' << p->index[2]
+        << "\nprobe_intensity " << p->intensity << "\nprobe_depth " << p->depth << "\nprobe_region "
+        << p->region << ' ' << p->region_name << '\n';
+  }
   return out.str();
 }
 

@@ -8,6 +8,12 @@
 //   results N, busy 0|1        results taken so far; whether a step is being computed
 //   step S, triangles N, mean_aspect A   the mesh on screen (A: mean R / 2r, measured here)
 //   samples N, mean_error E    the adapter's sample count and mean sampled error then
+//   probe X Y Z, probe_voxel I J K, probe_intensity V, probe_depth D, probe_region N NAME
+//                              the probed point (a click on the layer or in a slice) and
+//                              what the scan says there (volume_probe.h)
+//   widget slice_i|slice_j|slice_k X0 Y0 X1 Y1   the slice images normal to voxel axis i, j,
+//                              k (slice_panel.h): across the first other axis (voxel -1/2 at
+//                              X0, dims - 1/2 at X1), up the second (-1/2 at Y1)
 #pragma once
 
 #include <cstdint>
@@ -15,6 +21,7 @@
 #include <vector>
 
 #include "app/viewer/simulation.h"
+#include "app/viewer/volume_probe.h"
 #include "core/adapt/mesh_snapshot.h"
 
 namespace dynamesh {
@@ -31,6 +38,7 @@ struct ShownState {
   const MeshSnapshot* mesh = nullptr;  // null before the first mesh
   std::size_t samples = 0;             // the last step's
   double mean_error = 0.0;
+  const VolumeProbe* probe = nullptr;  // null: nothing probed
 };
 
 std::string widget_report(const std::vector<WidgetRect>& widgets,

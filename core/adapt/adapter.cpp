@@ -185,25 +185,33 @@ const StepStats& Adapter::step(double t) {
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
   // one the paper's whole step, so that no sub-step moves the surface far against the mesh.
   Stopwatch clock;
-  const int n = plan_substeps(from, t);
+  bool planned = false;
+  starts_planned_ = false;
+  const int n = plan_substeps(from, t, planned);
   stats_.seconds.project = clock.lap();
   bool corrected = false;
   for (int k = 1; k <= n; ++k)
-    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && n > 1);
+    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && planned);
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
   finish_stats();
   return stats_;
 }
 
-int Adapter::plan_substeps(double from, double to) {
+int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
   if (!options_.geometric || !options_.substeps.enabled || from == to) return 1;
   const bool carry = probe_.follows_material();
   if (carry) record_rest_points();
+  rest_points_planned = carry;
   surface_.set_time(to);
-  predict_displacements(mesh_, probe_, carry ? &rest_points_ : nullptr, displacement_);
+  const bool implicit = !probe_.parametric();
+  predict_displacements(mesh_, probe_, carry ? &rest_points_ : nullptr, displacement_,
+                        implicit ? &projection_starts_ : nullptr);
   const MotionEstimate e = estimate_substeps(mesh_, displacement_, options_.substeps);
   surface_.set_time(from);
+  // One sub-step ends at `to`, where the starts were evaluated (a topology rebuild before
+  // the correction would renumber the vertices: not then).
+  starts_planned_ = implicit && e.substeps == 1 && !topology_;
   stats_.substeps = e.substeps;
   stats_.motion_strain = e.strain;
   return e.substeps;
@@ -319,12 +327,21 @@ void Adapter::normal_correction() {
   // F(p) = F_t dt (p was on the surface), is exactly that prediction; on a distance field
   // (mri) it moves along the distance gradient. Sub-steps keep dt small enough for it to hold.
   const bool carry = probe_.follows_material() && rest_points_.size() >= mesh_.vertex_capacity();
+  // One sub-step: plan_substeps() already evaluated F and grad F where the projection starts
+  // (the carried point, or the vertex itself), at this time; used once.
+  const bool planned = starts_planned_ && projection_starts_.size() >= mesh_.vertex_capacity();
+  starts_planned_ = false;
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     if (!mesh_.is_alive(v)) continue;
-    if (carry) probe_.carry_vertex(mesh_, v, rest_points_[static_cast<std::size_t>(i)]);
+    const auto k = static_cast<std::size_t>(i);
+    if (planned) {
+      if (!probe_.project_vertex_from(mesh_, v, projection_starts_[k])) ++failures;
+      continue;
+    }
+    if (carry) probe_.carry_vertex(mesh_, v, rest_points_[k]);
     if (!probe_.project_vertex(mesh_, v)) ++failures;
   }
   tracker_->projection_failures += failures;
@@ -676,6 +693,7 @@ MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {
     scalars.push_back(std::move(q));
   }
   MeshSnapshot snap = make_snapshot(mesh_, &normals, scalars);
+  snap.volume = surface_.volume_image();
   snap.time = surface_.time();
   snap.step = step_;
   return snap;

@@ -78,7 +78,12 @@ class Adapter {
   const StepStats& initialize_here();
   bool advance(double t, bool rest_points_fresh);
   // Sub-steps needed from `from` to `to` (motion_substeps.h); leaves the surface at `from`.
-  int plan_substeps(double from, double to);
+  // Sets `rest_points_planned` when it recorded the rest points (at `from`), so that the
+  // first sub-step does not record them again (a whole evaluation pass over the vertices).
+  int plan_substeps(double from, double to, bool& rest_points_planned);
+  // After plan_substeps() chose one sub-step: its evaluations at the step's end time are the
+  // normal correction's first Newton iterates (projection_starts_).
+  bool starts_planned_ = false;
   void repair(const FoldRepairOptions& options);
   // Checks the frame about to be published for folds and slivers; repairs and re-measures.
   void publish_repaired();
@@ -155,8 +160,9 @@ class Adapter {
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
   std::size_t vertices_at_start_ = 0;
-  std::vector<Vec3> displacement_;  // predicted motion per vertex (plan_substeps)
-  std::vector<Face> bad_faces_[2];  // folded faces and slivers (publish_repaired)
+  std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
+  std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
+  std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/geometry/vector_types.h"
 #include "core/mesh/mesh48.h"
+#include "core/surface/volume/volume_image.h"
 
 namespace dynamesh {
 
@@ -22,6 +24,8 @@ struct MeshSnapshot {
   std::vector<float> normals;            // 3 per vertex (unit)
   std::vector<std::uint32_t> triangles;  // 3 per face, counter-clockwise seen from outside
   std::vector<ScalarField> fields;
+  // The scan the surface came from (mri), shared and immutable: null for analytic scenes.
+  std::shared_ptr<const VolumeImage> volume;
   Box3 bounds;
   double time = 0.0;
   std::uint64_t step = 0;

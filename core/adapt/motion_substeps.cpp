@@ -8,15 +8,18 @@
 namespace dynamesh {
 
 void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
-                           const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement) {
+                           const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement,
+                           std::vector<ProjectionStart>* starts) {
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
   displacement.resize(static_cast<std::size_t>(n));
+  if (starts) starts->resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
     if (mesh.is_alive(v))
-      displacement[k] = probe.predicted_motion(mesh, v, rest_points ? &(*rest_points)[k] : nullptr);
+      displacement[k] = probe.predicted_motion(mesh, v, rest_points ? &(*rest_points)[k] : nullptr,
+                                               starts ? &(*starts)[k] : nullptr);
   }
 }
 

@@ -39,8 +39,10 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
 
 // Fills `displacement` with every live vertex's predicted motion to the surface's current
 // time (rest_points: recorded before the time changed, for surfaces that follow the material;
-// else null), in parallel.
+// else null), in parallel. `starts` (may be null; implicit surfaces): each vertex's
+// SurfaceProbe::predicted_motion start, for the projection that follows at the same time.
 void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
-                           const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement);
+                           const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement,
+                           std::vector<ProjectionStart>* starts = nullptr);
 
 }  // namespace dynamesh

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/adapt/error_model.h"
+#include "core/allocator_policy.h"
 #include "core/mesh/bisection_map.h"
 #include "core/parallel.h"
 
@@ -41,6 +42,9 @@ SampleStore::SampleStore(double density, std::uint64_t seed) : density_(density)
   // Keeps parallel.cpp, and with it the engine's OpenMP wait policy, in every program that
   // measures samples (parallel.h).
   static_cast<void>(engine_wait_policy());
+  // Likewise the allocator policy (allocator_policy.h): the pool's buffers, given back when
+  // the mesh shrinks (compact), must go back to the system too.
+  static_cast<void>(engine_allocator_policy());
 }
 
 void SampleStore::grow_faces(std::size_t capacity) {
@@ -72,7 +76,20 @@ void SampleStore::compact_if_wasteful() {
 }
 
 void SampleStore::compact() {
+  // The pool and its spare keep the capacity they grew to, so that refining again allocates
+  // nothing. But a mesh that shrinks for good would hold its peak's samples for ever: the
+  // default sphere has 1.6M live samples at R = 9 and 17k back at R = 0.6, where the two
+  // buffers held 115 MB (and the resident memory grew whenever a later peak reached pages
+  // of them that an earlier one had not). So a buffer more than kReleaseFactor times larger
+  // than the live samples is given back; the factor is the hysteresis that keeps a mesh
+  // going up and down by less than that from reallocating.
+  const std::size_t live = n_samples();
+  const auto oversized = [live](const std::vector<Sample>& v) {
+    return v.capacity() > kReleaseFactor * std::max(live, kReleaseFloor);
+  };
+  if (oversized(spare_)) spare_ = std::vector<Sample>();
   spare_.clear();
+  spare_.reserve(live);
   for (std::size_t f = 0; f < face_count_.size(); ++f) {
     const auto first = samples_.begin() + face_start_[f];
     face_start_[f] = static_cast<std::uint32_t>(spare_.size());
@@ -80,6 +97,7 @@ void SampleStore::compact() {
   }
   samples_.swap(spare_);
   garbage_ = 0;
+  if (oversized(spare_)) spare_ = std::vector<Sample>();
 }
 
 std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {

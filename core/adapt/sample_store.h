@@ -30,6 +30,10 @@ class SampleStore final : public MeshListener {
  public:
   static constexpr std::uint32_t kMinSamplesPerFace = 9;
   static constexpr std::uint32_t kMaxSamplesPerFace = 256;
+  // compact() gives a buffer back when its capacity exceeds kReleaseFactor times the live
+  // samples (or times kReleaseFloor, below which buffers are too small to matter: 768 KB).
+  static constexpr std::size_t kReleaseFactor = 4;
+  static constexpr std::size_t kReleaseFloor = std::size_t{1} << 16;
 
   SampleStore(double density, std::uint64_t seed);
 
@@ -73,6 +77,9 @@ class SampleStore final : public MeshListener {
   // behind. Measuring does this by itself whenever those outweigh the live samples.
   void compact();
   std::size_t n_samples() const { return samples_.size() - garbage_; }
+  // Samples the pool and its spare have room for (their memory, in samples): at most
+  // kReleaseFactor times max(n_samples(), kReleaseFloor) each right after compact().
+  std::size_t held_samples() const { return samples_.capacity() + spare_.capacity(); }
   // Visits the face's samples as fn(barycentric Vec3, error).
   template <class Fn>
   void for_each_sample(Face f, Fn&& fn) const;
@@ -110,6 +117,7 @@ class SampleStore final : public MeshListener {
   std::uint64_t seed_;
   std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
+                                         // (up to kReleaseFactor times the live samples)
   std::size_t garbage_ = 0;              // samples in no face's range
   std::vector<std::uint32_t> face_start_, face_count_;
   std::vector<double> face_error_;

@@ -35,6 +35,12 @@ bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
   return r.converged;
 }
 
+bool SurfaceProbe::project_vertex_from(Mesh48& mesh, Vertex v, const ProjectionStart& start) const {
+  const ProjectionResult r = project_to_surface(*implicit_, start);
+  mesh.position(v) = r.point;
+  return r.converged;
+}
+
 bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& change) const {
   if (parametric_) return project_vertex(mesh, change.vertex);
   const Vec3 m = mesh.position(change.vertex);
@@ -83,12 +89,14 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
   return newton.converged;
 }
 
-Vec3 SurfaceProbe::predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest) const {
+Vec3 SurfaceProbe::predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest,
+                                    ProjectionStart* start) const {
   const Vec3& p = mesh.position(v);
   if (parametric_) return parametric_->position(mesh.uv(v)) - p;
   const Vec3 x = rest && follows_material() ? implicit_->from_rest(*rest) : p;
   Vec3 g;
   const double f = implicit_->value_gradient(x, g);
+  if (start) *start = ProjectionStart{x, f, g};
   const double g2 = g.squaredNorm();
   const Vec3 newton = g2 > 0 ? Vec3(-f / g2 * g) : Vec3::Zero();
   return x + newton - p;

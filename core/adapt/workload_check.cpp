@@ -29,6 +29,15 @@ std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b, const Wo
            short_number(w.curvature) + " over area " + short_number(w.area) + "), more than " +
            words.max_triangles + " " + whole(b.max_triangles) + "; raise " + words.threshold +
            " or the budget";
+  if (b.edge_length > 0) {
+    const double needed =
+        b.edge_length_share * w.area / (std::sqrt(3.0) / 4.0 * b.edge_length * b.edge_length);
+    if (needed > b.hopeless * b.max_triangles)
+      return "edges of at most " + words.edge_length + " " + short_number(b.edge_length) +
+             " need at least about " + short_number(needed) + " triangles over area " +
+             short_number(b.edge_length_share * w.area) + ", more than " + words.max_triangles +
+             " " + whole(b.max_triangles) + "; raise " + words.edge_length + " or the budget";
+  }
   if (w.samples > b.max_samples)
     return "the surface needs about " + short_number(w.samples) + " samples (" + words.density +
            " " + short_number(b.density) + " over area " + short_number(w.area) + "), more than " +

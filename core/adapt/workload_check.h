@@ -19,6 +19,11 @@ struct WorkloadBudget {
   // formula; more for a built-in scene, whose documented ranges are meant to run and whose
   // triangle budget may be a deliberate cap (the run then reports the hit).
   double hopeless = 1.0;
+  // An edge-length cap L (0: none) over `edge_length_share` of the area (the sphere's x >= 0
+  // half: 0.5) needs at least that area / (sqrt(3)/4 L^2) triangles, whatever T says: an
+  // in-range L = 0.001 on the sphere ran for ever towards 10^9 triangles.
+  double edge_length = 0.0;
+  double edge_length_share = 1.0;
 };
 
 // How the budgets are called where the message is read (the CLI's option names, the
@@ -28,6 +33,7 @@ struct WorkloadWords {
   std::string density = "--density";
   std::string max_triangles = "--max-triangles";
   std::string max_samples = "--max-samples";
+  std::string edge_length = "--edge-length";
 };
 
 // Estimates the workload at `checks` evenly spaced times of [t_first, t_last] (one when they

@@ -14,6 +14,19 @@ std::string where(const Vec3& p) {
   return s.str();
 }
 
+// Six significant digits, as where(Vec3): std::to_string's fixed notation printed a 300-digit
+// parameter for a domain of +-1e300.
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string where(const Vec2& p) {
+  return '(' + number(p.x()) + ", " + number(p.y()) + ')';
+}
+
 double max_curvature(const PrincipalCurvatures& k) {
   return std::max(std::abs(k.k1), std::abs(k.k2));
 }
@@ -30,8 +43,8 @@ WorkloadEstimate parametric_workload(const ParametricSurface& s, int n) {
       const double da = der.su.cross(der.sv).norm() * cell;
       const double k = max_curvature(s.curvatures(uv));
       if (!std::isfinite(da) || !std::isfinite(k) || !der.s.allFinite()) {
-        w.problem = "the surface or its derivatives are not finite (or overflow) at (u, v) = (" +
-                    std::to_string(uv.x()) + ", " + std::to_string(uv.y()) + ")";
+        w.problem =
+            "the surface or its derivatives are not finite (or overflow) at (u, v) = " + where(uv);
         break;
       }
       w.area += da;
@@ -69,8 +82,7 @@ double parametric_refined_cells(const ParametricSurface& s, double threshold, do
     deviation = std::max(deviation, (s.position(q.min + Vec2(half.x(), 0)) - 0.5 * (c00 + c10)).norm());
     deviation = std::max(deviation, (s.position(q.min + Vec2(0, half.y())) - 0.5 * (c00 + c01)).norm());
     if (!std::isfinite(deviation) || !c11.allFinite()) {
-      problem = "the surface is not finite (or overflows) near (u, v) = (" +
-                std::to_string(q.min.x()) + ", " + std::to_string(q.min.y()) + ")";
+      problem = "the surface is not finite (or overflows) near (u, v) = " + where(q.min);
       return leaves;
     }
     if (deviation <= threshold) {
@@ -78,9 +90,8 @@ double parametric_refined_cells(const ParametricSurface& s, double threshold, do
       continue;
     }
     if (half.x() < smallest) {
-      problem = "the surface does not become smooth at any scale near (u, v) = (" +
-                std::to_string(q.min.x()) + ", " + std::to_string(q.min.y()) +
-                ") (a jump or a singularity)";
+      problem = "the surface does not become smooth at any scale near (u, v) = " + where(q.min) +
+                " (a jump or a singularity)";
       return leaves;
     }
     for (int k = 0; k < 4; ++k)
@@ -138,8 +149,8 @@ WorkloadEstimate implicit_workload(const ImplicitSurface& s, int n) {
           s.value_gradient(p, g);
           const double k_max = max_curvature(s.curvatures(p));
           if (!g.allFinite() || !std::isfinite(k_max)) {
-            w.problem = "the gradient or curvature of F is not finite on the surface near " +
-                        where(p);
+            w.problem =
+                "the gradient or curvature of F is not finite on the surface near " + where(p);
             break;
           }
           if (is_jump(s, a, b, fa, fb)) {
@@ -180,7 +191,7 @@ WorkloadEstimate estimate_workload(const Surface& surface, double threshold, dou
   }
   w.samples = density * w.area;
   if (w.problem.empty() && !(std::isfinite(w.triangles) && std::isfinite(w.samples)))
-    w.problem = "the surface's area or curvature overflows (area " + std::to_string(w.area) + ")";
+    w.problem = "the surface's area or curvature overflows (area " + number(w.area) + ")";
   return w;
 }
 

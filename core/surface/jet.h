@@ -49,4 +49,16 @@ Mat3 mapped_hessian(const Shape& shape, const Map& map, const Vec3& p) {
   return compose(shape.jet(inner.value), inner).hessian;
 }
 
+// All three from one evaluation of the map and the shape (ImplicitSurface::
+// value_gradient_hessian); the gradient is the one mapped_value_gradient() returns.
+template <class Shape, class Map>
+double mapped_jet(const Shape& shape, const Map& map, const Vec3& p, Vec3& gradient,
+                  Mat3& hessian) {
+  const MapJet inner = map.to_rest_jet(p);
+  const ScalarJet j = compose(shape.jet(inner.value), inner);
+  gradient = j.gradient;
+  hessian = j.hessian;
+  return j.value;
+}
+
 }  // namespace dynamesh

@@ -16,12 +16,20 @@ bool close_enough(double f, double gnorm, double tolerance_length) {
 
 ProjectionResult project_to_surface(const ImplicitSurface& surface, const Vec3& x,
                                     const ProjectionOptions& options) {
+  ProjectionStart start;
+  start.point = x;
+  start.value = surface.value_gradient(x, start.gradient);
+  return project_to_surface(surface, start, options);
+}
+
+ProjectionResult project_to_surface(const ImplicitSurface& surface, const ProjectionStart& start,
+                                    const ProjectionOptions& options) {
   const double scale = surface.length_scale();
   const double tolerance_length = options.tolerance * scale;
   ProjectionResult result;
-  result.point = x;
-  Vec3 g;
-  double f = surface.value_gradient(x, g);
+  result.point = start.point;
+  Vec3 g = start.gradient;
+  double f = start.value;
   result.residual = std::abs(f);
   if (!std::isfinite(f)) return result;
   for (;;) {

@@ -35,4 +35,15 @@ struct ProjectionResult {
 ProjectionResult project_to_surface(const ImplicitSurface& surface, const Vec3& x,
                                     const ProjectionOptions& options = {});
 
+// A start point with F and grad F already evaluated there (at the surface's current time).
+struct ProjectionStart {
+  Vec3 point{Vec3::Zero()};
+  double value = 0.0;
+  Vec3 gradient{Vec3::Zero()};
+};
+// The same iteration from a start whose evaluation is known: the result is bit for bit the
+// one project_to_surface(surface, start.point) gives, one evaluation cheaper.
+ProjectionResult project_to_surface(const ImplicitSurface& surface, const ProjectionStart& start,
+                                    const ProjectionOptions& options = {});
+
 }  // namespace dynamesh

@@ -153,7 +153,7 @@ std::vector<SceneInfo> list_scenes() {
 
 std::unique_ptr<Surface> make_scene(const std::string& name, const ParameterOverrides& overrides,
                                     const TextOptions& text_options,
-                                    const ProgressCallback& progress) {
+                                    const ProgressCallback& progress, double max_memory_mb) {
   SceneBuilder build;
   {
     Catalogue& c = catalogue();
@@ -167,7 +167,7 @@ std::unique_ptr<Surface> make_scene(const std::string& name, const ParameterOver
     }
   }
   const ParameterOverrides unique = last_value_per_key(overrides);
-  std::unique_ptr<Surface> scene = build({text_options, unique, progress});
+  std::unique_ptr<Surface> scene = build({text_options, unique, progress, max_memory_mb});
   apply_overrides(*scene, unique);
   scene->set_time(0.0);
   return scene;

@@ -55,6 +55,9 @@ struct SceneRequest {
   // Stages of a long load (mri: "reading", "segmenting", "distance transform"), each with
   // the fraction done; may be empty. Only called during make_scene, from its thread.
   ProgressCallback progress;
+  // Memory, MiB, the scene may plan to use while loading (mri: the volume's preprocessing);
+  // a builder refuses, with an estimate, an input that would need more. 0: unchecked.
+  double max_memory_mb = 0.0;
 };
 
 using SceneBuilder = std::function<std::unique_ptr<Surface>(const SceneRequest& request)>;
@@ -96,7 +99,8 @@ std::vector<SceneInfo> list_scenes();
 std::unique_ptr<Surface> make_scene(const std::string& name,
                                     const ParameterOverrides& overrides = {},
                                     const TextOptions& text_options = {},
-                                    const ProgressCallback& progress = {});
+                                    const ProgressCallback& progress = {},
+                                    double max_memory_mb = 0.0);
 
 // "KEY=VALUE" (as given to --param) -> (KEY, VALUE); throws std::invalid_argument otherwise.
 std::pair<std::string, double> parse_parameter_override(const std::string& text);

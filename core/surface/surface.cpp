@@ -110,6 +110,11 @@ Mat3 ImplicitSurface::hessian(const Vec3& p) const {
   return 0.5 * (H + H.transpose());
 }
 
+double ImplicitSurface::value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& H) const {
+  H = hessian(p);
+  return value_gradient(p, gradient);
+}
+
 PrincipalCurvatures ImplicitSurface::curvatures(const Vec3& p) const {
   // Goldman 2005, "Curvature formulas for implicit curves and surfaces": the shape operator is
   // the Hessian restricted to the tangent plane and divided by |grad F| (the level set's
@@ -117,13 +122,13 @@ PrincipalCurvatures ImplicitSurface::curvatures(const Vec3& p) const {
   // symmetric 2x2 matrix whose eigen-pairs are the principal curvatures and directions; its
   // determinant and half trace are Goldman's Gaussian and mean curvatures (up to his sign).
   Vec3 g;
-  value_gradient(p, g);
+  Mat3 H;
+  value_gradient_hessian(p, g, H);
   const double gnorm = g.norm();
   if (!(gnorm > 0.0)) return PrincipalCurvatures{};
   const Vec3 n = g / gnorm;
   const Vec3 e1 = n.unitOrthogonal();
   const Vec3 e2 = n.cross(e1);
-  const Mat3 H = hessian(p);
   Mat2 shape;
   shape << e1.dot(H * e1), e1.dot(H * e2), e2.dot(H * e1), e2.dot(H * e2);
   return principal_curvatures_in_frame(shape / gnorm, e1, e2, n);

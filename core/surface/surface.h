@@ -20,6 +20,8 @@
 
 namespace dynamesh {
 
+struct VolumeImage;
+
 // A named, adjustable scalar of a scene (SCENES.md), with its range and a one-line meaning.
 struct SurfaceParameter {
   std::string name;
@@ -75,6 +77,9 @@ class Surface {
   virtual std::vector<std::string> point_quantities() const { return {}; }
   // NaN for an unknown name. Thread-safe like every const evaluation.
   virtual double point_quantity(const std::string& name, const Vec3& p) const;
+  // The scan behind a volume scene (mri): intensities with their placement and an optional
+  // label atlas, for per-fragment colouring and picking (volume_image.h); null otherwise.
+  virtual std::shared_ptr<const VolumeImage> volume_image() const { return nullptr; }
 
  private:
   double time_ = 0.0;
@@ -120,6 +125,10 @@ class ImplicitSurface : public Surface {
   virtual double value_gradient(const Vec3& p, Vec3& gradient) const;
   // By default central differences of value_gradient().
   virtual Mat3 hessian(const Vec3& p) const;
+  // F, grad F and Hess F together; by default value_gradient() and hessian(). Scenes that get
+  // all three from one evaluation (a rest shape under a map, jet.h) override it: curvatures()
+  // needs all three, once per vertex per step (issue 17's profile: a third of the smoothing).
+  virtual double value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& hessian) const;
   // Finite-difference step used by the defaults above; from length_scale().
   virtual double difference_step() const { return 1e-5 * length_scale(); }
 

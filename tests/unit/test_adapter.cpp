@@ -168,6 +168,18 @@ TEST(Adapter, BackAndForthSweepReturnsWithinOneLevel) {
 // the third. Under the paper's bound T - eps it did not drift, but then twist failed the
 // issue's return-to-start bound (MotionFrames.AnalyticScenesReturnToStart). Enable this test
 // when the drift is fixed; do not loosen it.
+// What the drift is (measured, issue 13's note): not sample noise -- seeds 1, 2, 3 follow the
+// same trajectory within 3% (1.07, 1.06, 1.07 after four sweeps; about 1.15 from the seventh
+// of twelve on, where it levels off) and full sampling drifts alike (1.10 after five); not
+// the weld decisions -- after every sweep no weldable vertex has a post-weld error below T
+// (the extra triangles sit behind finest vertices whose welds would leave > T + eps). It is
+// the tangential smoothing during the twisted motion: with smoothing off the bar's middle
+// returns to exactly the same mesh every sweep (only the superelliptic caps still grow),
+// with 2 or 3 smoothing iterations per step it drifts as far or further (1.18, 1.19 after
+// eight sweeps), and 20 rounds of relaxation at rest after the fourth sweep bring it from
+// 1.07 back to 1.01 (after the eighth, 1.19 to 1.07): the mesh comes back from each sweep
+// less relaxed than it started, and the 4-8 hierarchy keeps the refinement that its
+// displaced vertices need.
 TEST(Adapter, DISABLED_TwistRepeatedSweepsDoNotAccumulate) {
   expect_sweeps_settle("twist");
 }

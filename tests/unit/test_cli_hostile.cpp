@@ -174,6 +174,19 @@ TEST(CliHostile, FormulasNoMeshCanFollowAreRefusedUpFront) {
   expect_refused(implicit("x^2+y^2+z^2-1e12", "-2e6,-2e6,-2e6,2e6,2e6,2e6"), "triangles");
   for (const char* f : {"1e308*x", "tan(x*pi/2)", "exp(100*x)", "exp(700*x)", "sin(1000*x)"})
     expect_refused(height(f), "scene expr at t = ");
+  // Variants (session 3): a pole, a formula 100,000 characters long (the message quoted all
+  // of it: one line of 100 kB), a domain of +-1e300 (the message printed 300-digit numbers).
+  expect_refused(implicit("x^2+y^2+z^2-1+0.01/x"), "is infinite at (0, -1.5, -1.5)");
+  std::string longest = "x^2+y^2+z^2-1";
+  for (int i = 0; i < 20000; ++i) longest += "+0*x";
+  const Outcome r = run(implicit(longest));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err.substr(0, 300);
+  EXPECT_LT(r.err.size(), 1000u);
+  EXPECT_NE(r.err.find("characters left out"), std::string::npos) << r.err.substr(0, 300);
+  expect_refused({"run", "--scene", "expr", "--height-field", "0", "--domain",
+                  "-1e300,1e300,-1e300,1e300", "--quiet"},
+                 "at (u, v) = (-9.79167e+299, -9.79167e+299)");
   // Found by fuzz_formula (a 10 s timeout allocating samples for a steep height field):
   // 1932 z^4 - 3 over the default domain.
   expect_refused(height("46*+42*+z^4-3"), "more than --max-triangles");
@@ -236,6 +249,16 @@ TEST(CliHostile, NumbersThatWrapOrVanishAreRefused) {
     expect_refused({"run", "--density", bad}, "--density expects a number");
   // A newline in a name stays on the one line of the message.
   expect_refused({"run", "--scene", "mri\n"}, "mri\\n");
+}
+
+// Session 3's audit of the sphere's range: L = 0.001 (in [0.001, 10]) and --edge-length 0.001
+// ran for ever towards 10^8-10^9 triangles (killed at 60-90 s); the edge-length demand is now
+// part of the up-front estimate.
+TEST(CliHostile, EdgeLengthsNoBudgetCanMeetAreRefused) {
+  expect_refused({"run", "--scene", "sphere", "--param", "L=0.001", "--quiet"},
+                 "edges of at most --param L 0.001 need at least about");
+  expect_refused({"run", "--scene", "capsule-bend", "--edge-length", "0.001", "--quiet"},
+                 "edges of at most --edge-length 0.001 need at least about");
 }
 
 TEST(CliHostile, HugeDensityIsRefusedByTheSampleBudget) {
@@ -344,6 +367,22 @@ TEST(CliHostile, OutputsThatCannotBeWrittenAreRefusedAndLeaveNothing) {
   expect_refused(with({"--density", "1e12", "--render", (dir / "frames2").string()}),
                  "--max-samples");
   EXPECT_FALSE(fs::exists(dir / "frames2"));
+}
+
+// The soak's bar (issue 15): memory follows the mesh, so a run that grows and shrinks again
+// ends near where it started, not at its peak. The default sphere goes from R = 0.6 to 9
+// (39k triangles, 1.6M samples) and back: on the old code its resident memory at the end
+// was 97% of the peak (the sample pool kept its largest buffers), here it is about 55%.
+TEST(CliHostile, MemoryIsGivenBackWhenTheMeshShrinks) {
+  const Outcome r =
+      run({"run", "--scene", "sphere", "--keyframes", "0,1,0", "--steps", "20", "--quiet"}, 120);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = last_json(r.out);
+  ASSERT_GT(j["peak_triangles"].get<int>(), 20000);
+  EXPECT_LT(j["triangles"].get<int>(), 2000);
+  const double end = j["resident_mb"].get<double>(), peak = j["peak_resident_mb"].get<double>();
+  EXPECT_GT(end, 0.0);
+  EXPECT_LT(end, 0.7 * peak) << end << " MiB at the end, " << peak << " MiB at the peak";
 }
 
 }  // namespace

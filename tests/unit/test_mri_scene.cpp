@@ -41,11 +41,13 @@ SceneInfo info_of(const std::string& name) {
 TEST(MriScene, IsListedWithNominalParametersAndMillimetreSuggestions) {
   const SceneInfo mri = info_of("mri");
   EXPECT_TRUE(mri.parameters_depend_on_input);
-  ASSERT_EQ(mri.parameters.size(), 2u);
+  ASSERT_EQ(mri.parameters.size(), 3u);
   EXPECT_EQ(mri.parameters[0].name, "depth_max");
   EXPECT_EQ(mri.parameters[0].value, 15.0);  // SCENES.md: d(t) = 15 t mm
   EXPECT_EQ(mri.parameters[1].name, "threshold");
   EXPECT_EQ(mri.parameters[1].value, 0.0);  // Otsu
+  EXPECT_EQ(mri.parameters[2].name, "closing");
+  EXPECT_EQ(mri.parameters[2].value, 5.0);  // mm, for a brain up to 1.7 L
   EXPECT_EQ(mri.suggested_threshold, 0.5);
   EXPECT_GT(mri.suggested_density, 0.0);
   for (const char* name : {"sphere", "capsule-bend", "sinc", "twist"}) {

@@ -110,8 +110,9 @@ TEST_F(MriBall, IntensityFollowsTheVolume) {
 
 TEST_F(MriBall, ParametersAreCheckedAndThresholdResegments) {
   const auto params = surface_->parameters();
-  ASSERT_EQ(params.size(), 2u);
+  ASSERT_EQ(params.size(), 3u);
   EXPECT_EQ(params[0].name, "depth_max");
+  EXPECT_EQ(params[2].name, "closing");
   EXPECT_THROW(surface_->set_parameter("depth_max", -1.0), std::invalid_argument);
   EXPECT_THROW(surface_->set_parameter("depth_max", 1e6), std::invalid_argument);
   EXPECT_THROW(surface_->set_parameter("nonsense", 1.0), std::invalid_argument);
@@ -121,6 +122,10 @@ TEST_F(MriBall, ParametersAreCheckedAndThresholdResegments) {
   EXPECT_DOUBLE_EQ(surface_->layers().segmentation().threshold, 30.0);
   surface_->set_parameter("threshold", 0.0);  // back to Otsu
   EXPECT_TRUE(surface_->layers().segmentation().otsu);
+  // A closing given is taken as is (not sized to the brain) and re-segments.
+  EXPECT_THROW(surface_->set_parameter("closing", -1.0), std::invalid_argument);
+  surface_->set_parameter("closing", 2.0);
+  EXPECT_DOUBLE_EQ(surface_->layers().segmentation().closing_radius_mm, 2.0);
   surface_->set_parameter("depth_max", 10.0);
 }
 

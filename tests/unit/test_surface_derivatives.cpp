@@ -39,6 +39,14 @@ void expect_derivatives_match(const ImplicitSurface& s, const Vec3& p, double h)
       << s.name() << " t=" << s.time() << " p=" << p.transpose() << "\nH=\n"
       << H << "\nfd=\n"
       << H_fd;
+  // The combined jet (what curvatures() uses) is the same function to rounding (the twist's
+  // bar computes its jet's gradient by another arithmetic path): the gradient the projection
+  // sees and the one the smoothing sees do not drift apart.
+  Vec3 g_jet;
+  Mat3 H_jet;
+  EXPECT_NEAR(s.value_gradient_hessian(p, g_jet, H_jet), v, 1e-15 * (1.0 + std::abs(v)));
+  EXPECT_LE((g_jet - g).norm(), 1e-14 * (1.0 + g.norm())) << s.name();
+  EXPECT_LE((H_jet - H).norm(), 1e-15 * (1.0 + H.norm())) << s.name();
 }
 
 TEST(SurfaceDerivatives, SphereGradientAndHessianMatchFiniteDifferences) {

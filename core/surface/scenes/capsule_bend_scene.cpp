@@ -100,6 +100,11 @@ Mat3 CapsuleBendScene::hessian(const Vec3& p) const {
   return mapped_hessian(capsule_, bend_, p);
 }
 
+double CapsuleBendScene::value_gradient_hessian(const Vec3& p, Vec3& gradient,
+                                                Mat3& hessian) const {
+  return mapped_jet(capsule_, bend_, p, gradient, hessian);
+}
+
 Mesh48 CapsuleBendScene::base_mesh() const {
   // A box of 6 x 2 x 2 quads around the rest capsule; each vertex goes to its nearest point on
   // the rest capsule (radially on the cylinder, from the cap centre on the caps) and is then

@@ -41,6 +41,7 @@ class CapsuleBendScene final : public ImplicitSurface {
   double value(const Vec3& p) const override;
   double value_gradient(const Vec3& p, Vec3& gradient) const override;
   Mat3 hessian(const Vec3& p) const override;
+  double value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& hessian) const override;
 
   // The bend is nearly isometric (it keeps arc length along the axis): vertices carried with
   // it keep their triangles' shape, and the refinement at the rotating caps moves with them.

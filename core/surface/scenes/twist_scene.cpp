@@ -75,6 +75,10 @@ Mat3 TwistScene::hessian(const Vec3& p) const {
   return mapped_hessian(bar_, twist_, p);
 }
 
+double TwistScene::value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& hessian) const {
+  return mapped_jet(bar_, twist_, p, gradient, hessian);
+}
+
 Mesh48 TwistScene::base_mesh() const {
   // The rest bar's bounding box with 2 x 2 quads across and at least 6 along the bar, more when
   // twisted so that neighbouring cross-sections turn by at most 30 degrees (a quad of the

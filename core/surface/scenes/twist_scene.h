@@ -44,6 +44,7 @@ class TwistScene final : public ImplicitSurface {
   double value(const Vec3& p) const override;
   double value_gradient(const Vec3& p, Vec3& gradient) const override;
   Mat3 hessian(const Vec3& p) const override;
+  double value_gradient_hessian(const Vec3& p, Vec3& gradient, Mat3& hessian) const override;
 
   const LpBar& rest_shape() const { return bar_; }
   // No rest map for the adapter (ImplicitSurface::has_rest_map), because no transport that

@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/dicom_series.h"
 #include "core/io/nifti_volume.h"
 #include "core/surface/volume/distance_transform.h"
 #include "core/surface/volume/gaussian_smoothing.h"
+#include "core/surface/volume/orthogonal_resampling.h"
 
 namespace dynamesh {
 namespace {
@@ -55,13 +58,48 @@ MaskVolume read_mask(const std::filesystem::path& path, const VoxelGrid& volume_
   return mask;
 }
 
+// A brain must span enough voxels to be segmented at all: with voxels so large that even the
+// largest plausible brain (SegmentationOptions::max_volume_ml) would fill fewer than 1000
+// of them (e.g. a sform scaled 100x: 1e6 mm^3 voxels), the volume is refused at once
+// instead of after the segmentation.
+void check_voxels_can_hold_a_brain(const VoxelGrid& grid, const SegmentationOptions& o) {
+  constexpr double kMinBrainVoxels = 1000.0;
+  if (!(o.max_volume_ml > 0.0)) return;
+  const double largest = o.max_volume_ml * 1000.0 / kMinBrainVoxels;  // mm^3
+  if (grid.voxel_volume() <= largest) return;
+  std::ostringstream s;
+  s << "voxels of " << grid.voxel_volume() << " mm^3 (spacing " << grid.spacing().transpose()
+    << " mm): a brain of at most " << o.max_volume_ml << " ml would span fewer than "
+    << kMinBrainVoxels << " of them (at most " << largest << " mm^3 each); check the header's "
+    << "sform/qform and pixdim";
+  throw std::invalid_argument(s.str());
+}
+
+// Refuses, before the preprocessing allocates, a volume whose estimate exceeds the budget.
+void check_memory_budget(const VoxelGrid& grid, double max_memory_mb) {
+  if (!(max_memory_mb > 0.0)) return;
+  const double mb =
+      static_cast<double>(grid.count()) * kPreprocessingBytesPerVoxel / (1024.0 * 1024.0);
+  if (mb <= max_memory_mb) return;
+  std::ostringstream s;
+  s << "preprocessing " << grid.dims[0] << "x" << grid.dims[1] << "x" << grid.dims[2]
+    << " voxels needs about " << std::lround(mb) << " MiB, more than the memory budget ("
+    << "--max-memory " << max_memory_mb << "); crop or downsample the volume, or raise the budget";
+  throw std::invalid_argument(s.str());
+}
+
 }  // namespace
 
 MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   report(progress, "reading", 0.0);
-  NiftiVolume file =
-      read_nifti_volume(options.volume_path, [&](double f) { report(progress, "reading", f); });
+  // A folder is a DICOM series: converted to a temporary NIfTI (dicom_series.h), read, and
+  // the temporary file removed.
+  std::optional<ConvertedDicomSeries> dicom;
+  if (std::filesystem::is_directory(options.volume_path)) dicom.emplace(options.volume_path);
+  NiftiVolume file = read_nifti_volume(dicom ? dicom->nifti() : options.volume_path,
+                                       [&](double f) { report(progress, "reading", f); });
+  dicom.reset();
   std::optional<MaskVolume> mask;
   if (!options.mask_path.empty()) mask = read_mask(options.mask_path, file.volume.grid);
   const double read_seconds = seconds_since(start);
@@ -74,9 +112,20 @@ MriLayers MriLayers::build(const MriLayersOptions& options, const ProgressCallba
 MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptions& options,
                                     const ProgressCallback& progress,
                                     std::optional<MaskVolume> mask) {
-  MriLayers layers;
   if (mask && mask->grid.dims != intensity.grid.dims)
     throw std::invalid_argument("the mask's grid differs from the volume's");
+  check_voxels_can_hold_a_brain(intensity.grid, options.segmentation);
+  check_memory_budget(intensity.grid, options.max_memory_mb);
+  if (!has_orthogonal_axes(intensity.grid)) {
+    // A sheared placement: preprocessing on a grid with perpendicular axes (see
+    // orthogonal_resampling.h), the background taken as the volume's minimum.
+    const VoxelGrid grid = orthogonal_grid_around(intensity.grid);
+    check_memory_budget(grid, options.max_memory_mb);
+    const float background = *std::min_element(intensity.values.begin(), intensity.values.end());
+    intensity = resampled(intensity, grid, background);
+    if (mask) mask = resampled(*mask, grid);
+  }
+  MriLayers layers;
   layers.given_mask_ = std::move(mask);
   layers.options_ = options;
   layers.source_ = "(memory)";
@@ -91,6 +140,12 @@ MriLayers MriLayers::from_intensity(ScalarVolume intensity, const MriLayersOptio
 
 void MriLayers::set_threshold(double threshold, const ProgressCallback& progress) {
   options_.segmentation.threshold = threshold;
+  resegment(progress);
+}
+
+void MriLayers::set_closing(double radius_mm, const ProgressCallback& progress) {
+  options_.segmentation.closing_radius_mm = radius_mm;
+  options_.segmentation.closing_reference_ml = 0.0;  // a radius given is taken as is
   resegment(progress);
 }
 

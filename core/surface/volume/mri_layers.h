@@ -35,6 +35,15 @@ struct MriLayersOptions {
                                    // projected onto them and refinement ran away.
                                    .opening_radius_mm = 3.0,
                                    .closing_radius_mm = 5.0,
+                                   // Measured: Colin27 with its header set to 2 mm voxels
+                                   // (a brain twice as large, sulci twice as wide, 13.6 L)
+                                   // keeps sulci open under a 5 mm closing and refinement
+                                   // runs away in them; closed by 10 mm it adapts (22,748
+                                   // triangles, area 4.13x the 1 mm layer's). The same
+                                   // runaway happens on the 1 mm brain with no closing. An
+                                   // adult brain (Colin27: 1.66 L after the opening) is
+                                   // closed by 5 mm; larger ones in proportion.
+                                   .closing_reference_ml = 1700.0,
                                    // A neck's cross-section is ~100 cm^2; a brain cropped
                                    // tightly may graze the border (ch2better: 1 cm^2).
                                    .max_border_contact_mm2 = 1000.0,
@@ -42,7 +51,10 @@ struct MriLayersOptions {
                                    // L; the upper limit admits Colin27 with its header set
                                    // to 2 mm voxels (13.6 L, the voxel-size tests).
                                    .min_volume_ml = 10.0,
-                                   .max_volume_ml = 20000.0};
+                                   .max_volume_ml = 20000.0,
+                                   // A raw T1 with skull works out of the box.
+                                   .extract_brain = true,
+                                   .extraction = {}};
   // The distance is measured to the 1/2 level of the mask blurred by `boundary_smoothing_mm`
   // (sub-voxel, instead of the voxel staircase), then blurred by `distance_smoothing_mm`
   // before the B-spline. Measured on a NIfTI ball of radius 20 mm with 0.9-1.2 mm voxels
@@ -52,7 +64,16 @@ struct MriLayersOptions {
   // off on a 13.7 mm ball). The price is a bias of about sigma^2 / R in the value.
   double boundary_smoothing_mm = 1.5;
   double distance_smoothing_mm = 1.5;
+  // Memory budget of the preprocessing, MiB: a volume whose estimate
+  // (kPreprocessingBytesPerVoxel per voxel) exceeds it is refused before the work. 0: none.
+  double max_memory_mb = 0.0;
 };
+
+// Peak bytes per voxel of reading, segmenting and transforming (intensity, smoothed copy,
+// masks, the distance transform's squared distances and feature indices, the brain
+// extraction's labels, the distance and its B-spline): measured 38 on Colin27 (peak
+// resident 261-269 MB for 7.1 M voxels, whole run, ch2bet and ch2).
+inline constexpr double kPreprocessingBytesPerVoxel = 40.0;
 
 // Wall-clock seconds of each preprocessing stage.
 struct MriTimings {
@@ -76,6 +97,8 @@ class MriLayers {
 
   // Re-segments with another threshold (<= 0: Otsu) and recomputes the distance.
   void set_threshold(double threshold, const ProgressCallback& progress = {});
+  // Re-segments with another closing radius (mm, 0: none) and recomputes the distance.
+  void set_closing(double radius_mm, const ProgressCallback& progress = {});
   const MriLayersOptions& options() const { return options_; }
 
   // Signed distance to the brain boundary, mm, negative inside (C2 cubic B-spline).

@@ -20,6 +20,10 @@ constexpr double kBaseCellSize = 8.0;
 
 MriSurface::MriSurface(MriLayers layers, double depth_max, ProgressCallback progress)
     : layers_(std::move(layers)), depth_max_(depth_max), progress_(std::move(progress)) {
+  auto image = std::make_shared<VolumeImage>();
+  image->intensity = std::make_shared<const ScalarVolume>(layers_.intensity());
+  image->window = layers_.intensity_window();
+  image_ = std::move(image);
   const double limit = std::max(0.0, layers_.max_depth() - 1.0);
   if (!(depth_max >= 0.0 && depth_max <= limit)) {
     throw std::invalid_argument("mri: depth_max " + std::to_string(depth_max) + " outside [0, " +
@@ -33,7 +37,8 @@ std::vector<SurfaceParameter> MriSurface::parameters() const {
            "depth in mm of the layer at t = 1 below the brain's surface"},
           {"threshold", layers_.options().segmentation.threshold, 0.0, layers_.intensity_range()[1],
            "segmentation intensity threshold; 0 means Otsu's (currently " +
-               std::to_string(layers_.segmentation().threshold) + ")"}};
+               std::to_string(layers_.segmentation().threshold) + ")"},
+          {"closing", layers_.segmentation().closing_radius_mm, 0.0, kMaxClosingMm, kClosingHelp}};
 }
 
 void MriSurface::set_parameter(const std::string& name, double value) {
@@ -43,6 +48,10 @@ void MriSurface::set_parameter(const std::string& name, double value) {
     check_parameter_value(kName, p, value);
     if (name == "depth_max") {
       depth_max_ = value;
+    } else if (name == "closing") {
+      if (value == layers_.segmentation().closing_radius_mm) return;
+      layers_.set_closing(value, progress_);
+      depth_max_ = std::min(depth_max_, std::max(0.0, layers_.max_depth() - 1.0));
     } else if (value != layers_.options().segmentation.threshold) {
       // The same threshold again needs no work (the registry re-applies what a factory
       // already built with).
@@ -52,6 +61,12 @@ void MriSurface::set_parameter(const std::string& name, double value) {
     return;
   }
   throw std::invalid_argument(unknown_parameter_message(kName, name, list));
+}
+
+void MriSurface::set_atlas(std::shared_ptr<const LabelAtlas> atlas) {
+  auto image = std::make_shared<VolumeImage>(*image_);  // the intensities stay shared
+  image->atlas = std::move(atlas);
+  image_ = std::move(image);
 }
 
 double MriSurface::point_quantity(const std::string& name, const Vec3& p) const {
@@ -106,8 +121,10 @@ std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
   MriLayersOptions layer_options;
   layer_options.volume_path = options.volume_path;
   layer_options.mask_path = options.mask_path;
+  layer_options.max_memory_mb = options.max_memory_mb;
   layer_options.segmentation.threshold = options.threshold;
   layer_options.segmentation.closing_radius_mm = options.closing_radius_mm;
+  if (options.closing_given) layer_options.segmentation.closing_reference_ml = 0.0;
   return std::make_unique<MriSurface>(MriLayers::build(layer_options, options.progress),
                                       options.depth_max, options.progress);
 }

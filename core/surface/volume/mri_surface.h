@@ -12,6 +12,7 @@
 
 #include "core/surface/surface.h"
 #include "core/surface/volume/mri_layers.h"
+#include "core/surface/volume/volume_image.h"
 
 namespace dynamesh {
 
@@ -20,9 +21,24 @@ struct MriOptions {
   std::filesystem::path mask_path;  // --mask: a brain mask on the volume's grid; empty: none
   double threshold = 0.0;           // segmentation threshold (intensity); 0 or negative: Otsu
   double depth_max = 15.0;          // mm, depth of the layer at t = 1
+  // Ball radius of the morphological closing of the brain mask, mm (the `closing` scene
+  // parameter); 0: none, the layers follow the sulci (see kClosingHelp).
   double closing_radius_mm = 5.0;
-  ProgressCallback progress;  // loading / segmenting / distance transform, also on re-segmenting
+  // Whether closing_radius_mm was given (taken as is) or is the default (sized to the
+  // brain, SegmentationOptions::closing_reference_ml).
+  bool closing_given = false;
+  double max_memory_mb = 0.0;  // preprocessing memory budget (MriLayersOptions); 0: none
+  ProgressCallback progress;   // loading / segmenting / distance transform, also on re-segmenting
 };
+
+// The `closing` parameter's range and meaning. With 5 mm (the default) every layer from 0 to
+// 20 mm on Colin27 is one solid without holes; below ~3 mm the sulci stay open, the layers
+// fold into them and may have handles (genus > 0) or split into pieces as t grows: the
+// topology check of core/topology reports such events and re-bases the mesh (issue 16).
+inline constexpr double kMaxClosingMm = 20.0;
+inline constexpr const char* kClosingHelp =
+    "radius in mm of the morphological closing of the brain mask (bridges sulci; by default "
+    "5 mm, more for a brain larger than 1.7 L); 0: none, the layers follow the sulci";
 
 class MriSurface final : public ImplicitSurface {
  public:
@@ -67,6 +83,10 @@ class MriSurface final : public ImplicitSurface {
   Vec2 intensity_range() const { return layers_.intensity_range(); }
   Vec2 intensity_window() const { return layers_.intensity_window(); }
   const MriLayers& layers() const { return layers_; }
+  // The scan for the renderer and picking (read-only, shared with every snapshot), with the
+  // label atlas once one is set.
+  std::shared_ptr<const VolumeImage> volume_image() const override { return image_; }
+  void set_atlas(std::shared_ptr<const LabelAtlas> atlas);
 
  private:
   Vec3 first_crossing(const Vec3& origin, const Vec3& direction) const;
@@ -74,6 +94,7 @@ class MriSurface final : public ImplicitSurface {
   MriLayers layers_;
   double depth_max_;
   ProgressCallback progress_;
+  std::shared_ptr<const VolumeImage> image_;
 };
 
 // Reads, segments and transforms the volume (progress through options.progress); throws

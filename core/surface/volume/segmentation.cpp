@@ -1,6 +1,7 @@
 #include "core/surface/volume/segmentation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -69,8 +70,16 @@ void check_plausible(const MaskVolume& mask, const SegmentationOptions& o) {
                                 number(o.max_volume_ml) + " ml" + kHint);
 }
 
+double closing_radius(const MaskVolume& mask, const SegmentationOptions& o) {
+  if (!(o.closing_radius_mm > 0.0) || !(o.closing_reference_ml > 0.0)) return o.closing_radius_mm;
+  const double ml = static_cast<double>(std::count(mask.values.begin(), mask.values.end(), 1)) *
+                    mask.grid.voxel_volume() / 1000.0;
+  return o.closing_radius_mm * std::max(1.0, std::cbrt(ml / o.closing_reference_ml));
+}
+
 Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
-                        const ProgressCallback& progress, const std::string& where) {
+                        const ProgressCallback& progress, const std::string& where,
+                        bool may_extract) {
   Segmentation s;
   s.mask = std::move(mask);
   report(progress, kStage, 0.4);
@@ -79,9 +88,16 @@ Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
   if (s.components == 0)
     throw std::invalid_argument("segmentation: no voxel" + where + " is left by the " +
                                 number(options.opening_radius_mm) + " mm opening" + kHint);
+  if (may_extract && options.extract_brain && options.max_border_contact_mm2 > 0.0 &&
+      border_contact_mm2(s.mask) > options.max_border_contact_mm2) {
+    s.mask = extract_brain(s.mask, options.extraction);
+    keep_largest_component(s.mask);
+    s.extracted = true;
+  }
   check_plausible(s.mask, options);
   report(progress, kStage, 0.5);
-  close_mask(s.mask, options.closing_radius_mm);
+  s.closing_radius_mm = closing_radius(s.mask, options);
+  close_mask(s.mask, s.closing_radius_mm);
   report(progress, kStage, 0.8);
   s.holes_filled = fill_holes(s.mask);
   s.voxels = static_cast<std::size_t>(std::count(s.mask.values.begin(), s.mask.values.end(), 1));
@@ -125,7 +141,7 @@ Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOpt
   const bool otsu = !(options.threshold > 0.0);
   const double threshold = otsu ? otsu_threshold(smoothed.values) : options.threshold;
   Segmentation s = clean_mask(threshold_mask(smoothed, threshold), options, progress,
-                              " above the threshold " + std::to_string(threshold));
+                              " above the threshold " + std::to_string(threshold), true);
   s.otsu = otsu;
   s.threshold = threshold;
   return s;
@@ -135,7 +151,7 @@ Segmentation segment_mask(MaskVolume mask, const SegmentationOptions& options,
                           const ProgressCallback& progress) {
   report(progress, kStage, 0.0);
   for (std::uint8_t& v : mask.values) v = v ? 1 : 0;
-  return clean_mask(std::move(mask), options, progress, " in the mask");
+  return clean_mask(std::move(mask), options, progress, " in the mask", false);
 }
 
 }  // namespace dynamesh

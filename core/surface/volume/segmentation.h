@@ -7,6 +7,7 @@
 
 #include <cstddef>
 
+#include "core/surface/volume/brain_extraction.h"
 #include "core/surface/volume/progress.h"
 #include "core/surface/volume/voxel_grid.h"
 
@@ -20,12 +21,22 @@ struct SegmentationOptions {
   // strings of sub-voxel bubbles that no coarse mesh can follow. <= 0: none.
   double opening_radius_mm = 0.0;
   double closing_radius_mm = 0.0;  // ball radius of the closing; <= 0: none
+  // > 0: the closing is sized to the anatomy: a component larger than this (ml) gets a
+  // radius closing_radius_mm * cbrt(volume / closing_reference_ml), so that a brain n times
+  // larger in every direction (its sulci n times wider) is closed like the reference one.
+  // Never smaller than closing_radius_mm. 0: the radius as given.
+  double closing_reference_ml = 0.0;
   // Plausibility of the largest component, checked before the closing so that a scan that is
   // not a brain fails within seconds (a head with its skull touches the volume's border
   // where the neck leaves it: ~100 cm^2 on Colin27's ch2; a random volume percolates to the
   // border). 0: no check.
   double max_border_contact_mm2 = 0.0;
   double min_volume_ml = 0.0, max_volume_ml = 0.0;
+  // A thresholded volume whose largest component touches the border beyond
+  // max_border_contact_mm2 is taken for a head with its skull and the brain is extracted
+  // from it (brain_extraction.h) before the checks; false: it is refused.
+  bool extract_brain = false;
+  BrainExtractionOptions extraction;
 };
 
 struct Segmentation {
@@ -35,6 +46,8 @@ struct Segmentation {
   std::size_t components = 0;    // face-connected components above the threshold
   std::size_t holes_filled = 0;  // voxels
   std::size_t voxels = 0;        // in the final mask
+  bool extracted = false;        // whether the brain was extracted from a head
+  double closing_radius_mm = 0.0;  // the closing's radius (after sizing to the anatomy)
   double volume_ml() const { return voxels * mask.grid.voxel_volume() / 1000.0; }
 };
 

@@ -1,0 +1,50 @@
+// A VolumeImage on the GPU: the intensities as a 3-D float texture (linear filtering: the
+// trilinear interpolation between voxel centres that TrilinearSampler does on the CPU) and
+// the label atlas as a 3-D integer texture (read with texelFetch at the nearest voxel).
+// Uploaded once per scan (the snapshots share one VolumeImage), never per frame; GL 3.3 core,
+// so it works on OSMesa's llvmpipe as in the window.
+#pragma once
+
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "core/surface/volume/volume_image.h"
+
+namespace dynamesh {
+
+class VolumeTextures {
+ public:
+  VolumeTextures();
+  ~VolumeTextures();
+  VolumeTextures(const VolumeTextures&) = delete;
+  VolumeTextures& operator=(const VolumeTextures&) = delete;
+
+  // Uploads what differs from the image already on the GPU (nothing when it is the same).
+  void set(const std::shared_ptr<const VolumeImage>& image);
+  const std::shared_ptr<const VolumeImage>& image() const { return image_; }
+  bool has_intensity() const { return image_ && image_->intensity; }
+  bool has_labels() const { return image_ && image_->atlas; }
+  // Binds the intensity texture to unit 1 and the labels to unit 2.
+  void bind() const;
+  // World millimetres -> intensity texture coordinates ((ijk + 1/2) / dims).
+  glm::mat4 world_to_texture() const { return world_to_texture_; }
+  // World millimetres -> label voxel index (centres at integers).
+  glm::mat4 world_to_label() const { return world_to_label_; }
+  int uploads() const { return uploads_; }
+
+ private:
+  std::shared_ptr<const VolumeImage> image_;
+  // The volumes the textures hold, kept alive so that a new volume can never be mistaken
+  // for them by its address (an mri scene, another scene, then another scan).
+  std::shared_ptr<const ScalarVolume> intensity_uploaded_;
+  std::shared_ptr<const LabelAtlas> labels_uploaded_;
+  unsigned intensity_texture_ = 0, label_texture_ = 0;
+  glm::mat4 world_to_texture_{1.0f}, world_to_label_{1.0f};
+  int uploads_ = 0;
+};
+
+// The inverse of a grid's voxel -> world map as a 4x4 matrix (world -> voxel index).
+glm::mat4 world_to_voxel_matrix(const VoxelGrid& grid);
+
+}  // namespace dynamesh
