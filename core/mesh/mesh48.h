@@ -162,9 +162,10 @@ class Mesh48 {
   // `corners` (an index i < existing.size() is the live vertex existing[i], otherwise the new
   // vertex made at positions[i - existing.size()]). The new triangles must close the hole
   // exactly (each of their unshared edges is the reverse of an edge of a remaining face whose
-  // neighbour was removed) and be paired: among themselves, or, across the border, with a
-  // remaining face whose refinement edge is that edge and whose depth is theirs (`depths`,
-  // one per triangle; empty means all 0). Vertices used by no
+  // neighbour was removed) and keep the 4-8 rule across the border (`depths`, one per
+  // triangle; empty means all 0): a shared edge that is a leg of both sides joins faces alike
+  // deep; a triangle's refinement edge there is either the remaining face's refinement edge
+  // too (alike deep) or its leg (one bisection coarser, a half diamond). Vertices used by no
   // face any more die; vertices on the border, and those whose parents died, become base
   // vertices (their welds would restore edges that no longer exist). No listener is told:
   // the caller re-synchronises what it keeps per element. Returns the new vertices' ids.

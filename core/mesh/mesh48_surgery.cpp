@@ -69,11 +69,16 @@ std::vector<Vertex> Mesh48::replace_region(
     }
     const auto bt = border.find(reverse);
     if (bt == border.end()) fail("an edge is neither shared nor on the border");
-    // A refinement edge on the border is a diamond of an old face and a new one, alike deep.
-    if ((h % 3 == 0) != (bt->second % 3 == 0))
-      fail("a refinement edge on the border is not shared");
-    if (h % 3 == 0 && faces_[bt->second / 3].depth != depth_of(h / 3))
-      fail("a diamond across the border joins faces of different depths");
+    // A refinement edge on the border is a diamond of an old face and a new one, alike deep,
+    // or a new half diamond against an old face one bisection coarser, whose leg it is.
+    const int old_depth = faces_[bt->second / 3].depth, new_depth = depth_of(h / 3);
+    if (bt->second % 3 == 0) {
+      if (h % 3 != 0) fail("an old face's refinement edge on the border is not shared");
+      if (old_depth != new_depth)
+        fail("a diamond across the border joins faces of different depths");
+    } else if (h % 3 == 0 ? old_depth + 1 != new_depth : old_depth != new_depth) {
+      fail("the faces across the border are not as deep as the 4-8 rule wants");
+    }
     ++matched;
   }
   if (matched != border.size()) fail("the triangles do not close the hole");

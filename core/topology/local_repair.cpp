@@ -53,14 +53,16 @@ void close_cut(const Mesh48& mesh, std::vector<char>& cut) {
   }
 }
 
-// The depth every face beside the cut's border has, after cutting the deeper ones (closed
-// again each time); -1 when nothing remains. The new triangles all get this depth: inside a
-// piece of the patch every edge is a pair's refinement edge or a leg shared by two faces, so
-// the piece has one depth, and across the seam (the old faces' legs, by the closure) the 4-8
-// rule wants the old face alike deep (Mesh48::check). Cutting to the coarsest depth on the
-// border is the issue's "weld the region down": the old side is coarse where it meets the
-// patch, and the queues refine it again.
-int level_border(const Mesh48& mesh, std::vector<char>& cut) {
+// The new triangles all get one depth D: inside a piece of the patch every edge is a pair's
+// refinement edge or a leg shared by two faces, so the piece has one depth. Across the seam
+// (the old faces' legs, by the closure) the 4-8 rule (Mesh48::check) wants the old face alike
+// deep, or one coarser when the new triangle's refinement edge lies on the seam (a half
+// diamond whose partner the next split of it forces on the old side). So the border is cut
+// down until its faces are of two adjacent depths at most -- the issue's "weld the region
+// down": where the old side is finer than the patch it is cut away and the queues refine it
+// again. Returns whether the cut grew.
+bool level_border(const Mesh48& mesh, std::vector<char>& cut) {
+  bool any = false;
   for (;;) {
     int coarsest = -1;
     std::vector<std::uint32_t> border;
@@ -77,10 +79,56 @@ int level_border(const Mesh48& mesh, std::vector<char>& cut) {
     }
     bool grew = false;
     for (const std::uint32_t f : border)
-      if (mesh.depth(Face(f)) > coarsest) cut[f] = grew = 1;
-    if (!grew) return coarsest;
+      if (mesh.depth(Face(f)) > coarsest + 1) cut[f] = grew = 1;
+    if (!grew) return any;
+    any = true;
     close_cut(mesh, cut);
   }
+}
+
+std::uint64_t edge_key(std::uint32_t from, std::uint32_t to) {
+  return (std::uint64_t{from} << 32) | to;
+}
+
+// The depth of the remaining face on each border halfedge (from, to).
+std::unordered_map<std::uint64_t, int> border_depths(const Mesh48& mesh,
+                                                     const std::vector<char>& cut) {
+  std::unordered_map<std::uint64_t, int> depth;
+  for (const Face f : mesh.live_faces()) {
+    if (cut[f.idx]) continue;
+    for (int i = 0; i < 3; ++i) {
+      const Face across = mesh.neighbor(f, i);
+      if (!across.is_valid() || !cut[across.idx]) continue;
+      const Halfedge h(3 * f.idx + static_cast<std::uint32_t>(i));
+      depth[edge_key(mesh.from_vertex(h).idx, mesh.to_vertex(h).idx)] = mesh.depth(f);
+    }
+  }
+  return depth;
+}
+
+int patch_depth(const std::unordered_map<std::uint64_t, int>& depths) {
+  int d = 0;
+  for (const auto& [edge, depth] : depths) d = std::max(d, depth);
+  return d;
+}
+
+// The loops whose new triangles cannot all be paired: a loop's side holds as many new
+// triangles as the loop has edges, modulo 2 (a disk), and one per edge of a coarser old
+// face is a half diamond, left out of the pairing; the rest must be even.
+std::ptrdiff_t odd_loops(const Mesh48& mesh, const std::vector<char>& cut,
+                         const std::vector<Loop>& loops) {
+  const auto depths = border_depths(mesh, cut);
+  const int d = patch_depth(depths);
+  std::ptrdiff_t odd = 0;
+  for (const Loop& loop : loops) {
+    std::size_t at_depth = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const auto it = depths.find(edge_key(loop[k], loop[(k + 1) % loop.size()]));
+      at_depth += it != depths.end() && it->second == d;
+    }
+    odd += at_depth % 2;
+  }
+  return odd;
 }
 
 // Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
@@ -320,17 +368,17 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   level_border(mesh, cut);
   std::vector<Loop> mesh_loops = loops_of(border_of(mesh, cut));
   if (mesh_loops.empty()) return refuse("nothing to cut near the event, or its border is pinched");
-  const auto odd_loops = [](const std::vector<Loop>& loops) {
-    return std::count_if(loops.begin(), loops.end(), [](const Loop& l) { return l.size() % 2; });
+  const auto count_odd = [&](const std::vector<char>& c, const std::vector<Loop>& loops) {
+    return odd_loops(mesh, c, loops);
   };
   // An odd loop is mended by cutting one more face g next to it, alone: one whose
   // refinement edge leads to a coarser face (not a diamond) and which is no remaining face's
   // refinement neighbour, so that the cut stays closed. The loop's length changes by one (or
   // three). In a 4-8 mesh such faces are where the refinement level changes; a diamond would
   // take its partner along and keep the parity.
-  for (int round = 0; round < 16 && odd_loops(mesh_loops) > 0; ++round) {
+  for (int round = 0; round < 16 && count_odd(cut, mesh_loops) > 0; ++round) {
     const Loop& odd = *std::find_if(mesh_loops.begin(), mesh_loops.end(),
-                                    [](const Loop& l) { return l.size() % 2; });
+                                    [&](const Loop& l) { return odd_loops(mesh, cut, {l}) > 0; });
     bool fixed = false;
     for (std::size_t k = 0; k < odd.size() && !fixed; ++k)
       mesh.for_each_corner_around(Vertex(odd[k]), [&](Corner corner) {
@@ -344,7 +392,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
         trial[g.idx] = 1;
         level_border(mesh, trial);
         std::vector<Loop> loops = loops_of(border_of(mesh, trial));
-        if (!loops.empty() && odd_loops(loops) < odd_loops(mesh_loops)) {
+        if (!loops.empty() && count_odd(trial, loops) < count_odd(cut, mesh_loops)) {
           cut = std::move(trial);
           mesh_loops = std::move(loops);
           fixed = true;
@@ -369,12 +417,13 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
     mesh_loops = loops_of(border_of(mesh, cut));
     if (mesh_loops.empty()) return refuse("the cut's border is pinched");
   }
-  if (odd_loops(mesh_loops) > 0) return refuse("no cut with even border loops");
+  if (count_odd(cut, mesh_loops) > 0) return refuse("no cut with even border loops");
   std::vector<Face> removed;
   for (const Face f : mesh.live_faces())
     if (cut[f.idx]) removed.push_back(f);
   if (removed.size() == mesh.n_faces()) return refuse("the cut takes the whole mesh");
-  const int depth = level_border(mesh, cut);  // already level: the patch's depth
+  const std::unordered_map<std::uint64_t, int> seam_depth = border_depths(mesh, cut);
+  const int depth = patch_depth(seam_depth);
 
   // 2. The patch: F's contour near the event, a little inside the cut.
   // The patch: F's contour within r - h / 2 of the event, so that a strip about an edge wide
@@ -430,15 +479,41 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   // 4. Unfold, then pair the new triangles.
   if (!unfold_by_flips(surface, on_surface(surface, positions, offset), triangles))
     return refuse("a new triangle would be turned over");
+  // A new triangle on an edge of a coarser old face is a half diamond: that edge is its
+  // refinement edge (the old face's leg), and it is left out of the pairing.
+  std::vector<int> half_at(triangles.size(), -1);  // its seam edge's apex corner
+  std::vector<Triangle> to_pair;
+  std::vector<std::size_t> paired_index;
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    const Triangle& t = triangles[k];
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+      if (a >= offset || b >= offset) continue;
+      const auto it = seam_depth.find(edge_key(existing[b].idx, existing[a].idx));
+      if (it != seam_depth.end() && it->second < depth) half_at[k] = i;
+    }
+    if (half_at[k] < 0) {
+      to_pair.push_back(t);
+      paired_index.push_back(k);
+    }
+  }
   std::vector<std::int64_t> partner;
   try {
-    partner = pair_triangles(positions, triangles);
+    partner = pair_triangles(positions, to_pair);
   } catch (const std::invalid_argument& e) {
     return refuse(std::string("the new triangles are not a manifold: ") + e.what());
   }
   if (std::count(partner.begin(), partner.end(), -1) > 0)
     return refuse("the new triangles cannot all be paired");
-  const std::vector<Triangle> ordered = refinement_edge_first(triangles, partner);
+  const std::vector<Triangle> paired = refinement_edge_first(to_pair, partner);
+  std::vector<Triangle> ordered(triangles.size());
+  for (std::size_t k = 0; k < paired.size(); ++k) ordered[paired_index[k]] = paired[k];
+  for (std::size_t k = 0; k < triangles.size(); ++k)
+    if (half_at[k] >= 0) {
+      const Triangle& t = triangles[k];
+      const int i = half_at[k];
+      ordered[k] = {t[i], t[(i + 1) % 3], t[(i + 2) % 3]};
+    }
   const std::vector<Vec3> created(positions.begin() + offset, positions.end());
   Mesh48 backup = mesh;
   try {
