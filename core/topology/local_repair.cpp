@@ -90,19 +90,28 @@ std::uint64_t edge_key(std::uint32_t from, std::uint32_t to) {
   return (std::uint64_t{from} << 32) | to;
 }
 
-// The depth of the remaining face on each border halfedge (from, to).
-std::unordered_map<std::uint64_t, int> border_depths(const Mesh48& mesh,
-                                                     const std::vector<char>& cut) {
-  std::unordered_map<std::uint64_t, int> depth;
+// Calls visit(face, from, to) for every border halfedge: a halfedge of a remaining face whose
+// neighbour is cut.
+template <class Visit>
+void for_each_border_halfedge(const Mesh48& mesh, const std::vector<char>& cut, Visit visit) {
   for (const Face f : mesh.live_faces()) {
     if (cut[f.idx]) continue;
     for (int i = 0; i < 3; ++i) {
       const Face across = mesh.neighbor(f, i);
       if (!across.is_valid() || !cut[across.idx]) continue;
       const Halfedge h(3 * f.idx + static_cast<std::uint32_t>(i));
-      depth[edge_key(mesh.from_vertex(h).idx, mesh.to_vertex(h).idx)] = mesh.depth(f);
+      visit(f, mesh.from_vertex(h).idx, mesh.to_vertex(h).idx);
     }
   }
+}
+
+// The depth of the remaining face on each border halfedge (from, to).
+std::unordered_map<std::uint64_t, int> border_depths(const Mesh48& mesh,
+                                                     const std::vector<char>& cut) {
+  std::unordered_map<std::uint64_t, int> depth;
+  for_each_border_halfedge(mesh, cut, [&](Face f, std::uint32_t from, std::uint32_t to) {
+    depth[edge_key(from, to)] = mesh.depth(f);
+  });
   return depth;
 }
 
@@ -135,15 +144,8 @@ std::ptrdiff_t odd_loops(const Mesh48& mesh, const std::vector<char>& cut,
 std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
                                                                const std::vector<char>& cut) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-  for (const Face f : mesh.live_faces()) {
-    if (cut[f.idx]) continue;
-    for (int i = 0; i < 3; ++i) {
-      const Face across = mesh.neighbor(f, i);
-      if (!across.is_valid() || !cut[across.idx]) continue;
-      const Halfedge h(3 * f.idx + static_cast<std::uint32_t>(i));
-      edges.emplace_back(mesh.from_vertex(h).idx, mesh.to_vertex(h).idx);
-    }
-  }
+  for_each_border_halfedge(
+      mesh, cut, [&](Face, std::uint32_t from, std::uint32_t to) { edges.emplace_back(from, to); });
   return edges;
 }
 
