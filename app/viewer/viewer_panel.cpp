@@ -41,6 +41,26 @@ bool text_option(SimulationControls& c, const std::string& key) {
   return true;
 }
 
+void note_widget(PanelActions& a, const PanelInfo& info, const char* label);
+
+// The mri scene's scan: a NIfTI file or a DICOM series folder, typed (committed on Enter) or
+// dropped on the window. Opening it is the app's (PanelActions::open_path): loaded on the
+// worker, and a file that cannot be read leaves the scene on screen as it was.
+void scan_path_field(const SimulationControls& c, PanelActions& a, const PanelInfo& info) {
+  const auto it = std::find_if(c.scene_text.begin(), c.scene_text.end(),
+                               [](const auto& kv) { return kv.first == "volume"; });
+  char buffer[1024] = {};
+  if (it != c.scene_text.end()) std::snprintf(buffer, sizeof buffer, "%s", it->second.c_str());
+  const bool entered = ImGui::InputText("volume", buffer, sizeof buffer, kOnEnter);
+  note_widget(a, info, "volume");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        ".nii / .nii.gz file or DICOM series folder; Enter opens it (or drop it "
+        "on the window); empty: Colin27");
+  if (entered) a.open_path = buffer;  // empty: the default scan
+  a.open_requested |= entered;
+}
+
 void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
   SimulationControls& c = s.controls;
@@ -86,11 +106,11 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     a.controls_changed |= formula_section(s, info);
     return;
   }
-  for (std::size_t i = 0; i < c.scene_text.size(); ++i)
+  for (std::size_t i = 0; i < c.scene_text.size(); ++i) {
+    if (c.scene == "mri" && c.scene_text[i].first == "volume") continue;  // the path field below
     a.controls_changed |= text_option(c, std::string(c.scene_text[i].first));
-  const bool has_volume = std::any_of(c.scene_text.begin(), c.scene_text.end(),
-                                      [](const auto& kv) { return kv.first == "volume"; });
-  if (c.scene == "mri" && !has_volume) a.controls_changed |= text_option(c, "volume");
+  }
+  if (c.scene == "mri") scan_path_field(c, a, info);
   if (!c.scene_parameters.empty() && ImGui::SmallButton("default parameters")) {
     c.scene_parameters.clear();
     a.controls_changed = true;
@@ -100,6 +120,12 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     ImGui::TextWrapped("%s", info.error.c_str());
     ImGui::PopStyleColor();
     ImGui::TextDisabled("(showing the last good mesh)");
+  }
+  if (!info.open_error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", info.open_error.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("(the previous scene stays)");
   }
 }
 
