@@ -28,9 +28,8 @@ class StatsHistory {
     push(series_.splits, static_cast<double>(s.splits));
     push(series_.welds, static_cast<double>(s.welds));
     push(series_.step_ms, 1e3 * s.seconds.total);
-    push(series_.kept_percent, s.vertices == 0 ? 0.0
-                                               : 100.0 * static_cast<double>(s.vertices_kept) /
-                                                     static_cast<double>(s.vertices));
+    push(series_.kept_percent, s.vertices == 0 ? 0.0 : 100.0 * static_cast<double>(s.vertices_kept) /
+                                                           static_cast<double>(s.vertices));
   }
   void clear() { series_ = Series{}; }
   const Series& series() const { return series_; }
