@@ -614,7 +614,8 @@ void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets, const Vol
   shown.progress = progress_shown_;
   shown.scene = running_scene_;
   shown.scene_text = &running_text_;
-  shown.error = !open_error_.empty() ? open_error_ : error_;
+  shown.error = error_;
+  shown.open_error = open_error_;
   const std::string text = widget_report(widgets, state_.controls, shown);
   if (text == widget_report_written_) return;
   try {

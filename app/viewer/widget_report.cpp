@@ -38,10 +38,12 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
   if (shown.scene_text != nullptr)
     for (const auto& [key, value] : *shown.scene_text)
       out << "scene_text " << key << ' ' << value << '\n';
-  if (!shown.error.empty()) {
-    std::string one_line = shown.error;
+  for (const auto& [key, message] :
+       {std::pair{"error", &shown.error}, std::pair{"open_error", &shown.open_error}}) {
+    if (message->empty()) continue;
+    std::string one_line = *message;
     std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-    out << "error " << one_line << '\n';
+    out << key << ' ' << one_line << '\n';
   }
   if (shown.mesh != nullptr) {
     const auto& p = shown.mesh->positions;

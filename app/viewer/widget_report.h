@@ -14,7 +14,8 @@
 //   frames N                   frames drawn so far (they go on while a scan loads)
 //   progress STAGE P%          while a scan loads: what the panel shows
 //   scene NAME, scene_text KEY VALUE   the scene on screen and its text options (volume)
-//   error MESSAGE              the red message under the scene (a scan that cannot be read)
+//   error MESSAGE              the last request failed (red, under the scene)
+//   open_error MESSAGE         the last scan opened could not be read (red, under the scene)
 //   bounds X0 Y0 Z0 X1 Y1 Z1   the mesh's bounding box
 //   widget slice_i|slice_j|slice_k X0 Y0 X1 Y1   the slice images normal to voxel axis i, j,
 //                              k (slice_panel.h): across the first other axis (voxel -1/2 at
@@ -48,7 +49,8 @@ struct ShownState {
   std::string progress;                // loading a scan: stage and percentage
   std::string scene;                   // the scene on screen and its text options
   const TextOptions* scene_text = nullptr;
-  std::string error;  // the red message under the scene, if any
+  std::string error;       // the last request failed: the red message under the scene
+  std::string open_error;  // the last scan opened could not be read: its red message
 };
 
 std::string widget_report(const std::vector<WidgetRect>& widgets,

@@ -146,9 +146,19 @@ TEST(ViewerOpenScan, PathFieldDropAndDicomFolderLoadOnTheWorker) {
       << "r=$(val results)\n"
       << "'" << DYNAMESH_XDND_DROP << "' $w 700 380 '" << (dir / "garbage.nii").string()
       << "' || exit 6\n"
-      << "for i in $(seq 600); do [ -n \"$(val error)\" ] && [ \"$(val busy)\" = 0 ] && "
+      << "for i in $(seq 600); do [ -n \"$(val open_error)\" ] && [ \"$(val busy)\" = 0 ] && "
          "[ \"$(val results)\" -gt $((r + 1)) ] && break; sleep 0.1; done\n"
       << "cp \"$report\" \"$report.bad\"\n"
+      // The scene on screen still works: one step forward.
+      << "set -- $(awk '$1==\"widget\" && $2==\"step_forward\" {print int(($3+$5)/2), "
+         "int(($4+$6)/2)}' \"$report\")\n"
+      << "[ -n \"$2\" ] || exit 11\n"
+      << "r=$(val results)\n"
+      << "for i in 1 2 3 4 5; do xdotool mousemove --window $w $1 $2 click 1; sleep 0.5; "
+         "[ \"$(val results)\" -gt $r ] && break; done\n"
+      << "for i in $(seq 600); do [ \"$(val busy)\" = 0 ] && [ \"$(val results)\" -gt $r ] && "
+         "break; sleep 0.1; done\n"
+      << "cp \"$report\" \"$report.stepped\"\n"
       // The DICOM series folder, dropped.
       << "r=$(val results)\n"
       << "'" << DYNAMESH_XDND_DROP << "' $w 700 380 '" << (dir / "series").string()
@@ -172,27 +182,34 @@ TEST(ViewerOpenScan, PathFieldDropAndDicomFolderLoadOnTheWorker) {
     return test::slurp_text(report.string() + "." + name);
   };
   const std::string start = read("start"), typed = read("typed"), bad = read("bad"),
-                    dicom = read("dicom"), gz = read("gz");
+                    stepped = read("stepped"), dicom = read("dicom"), gz = read("gz");
   expect_ball(start, test::kBallCentre, test::kBallRadius, "ball A from the command line");
   // Typed into the path field.
   EXPECT_EQ(reported(typed, "scene_text volume"), ball_b.string()) << typed;
   expect_ball(typed, centre_b, 25.0, "ball B typed into the path field");
   EXPECT_EQ(reported(typed, "error"), "") << typed;
   // The garbage file: a message naming it, and ball B's scene on screen, adapted again.
-  const std::string error = reported(bad, "error");
+  const std::string error = reported(bad, "open_error");
   EXPECT_NE(error.find("cannot open " + (dir / "garbage.nii").string()), std::string::npos) << bad;
   EXPECT_NE(error.find("NIfTI"), std::string::npos) << bad;
   EXPECT_EQ(reported(bad, "scene_text volume"), ball_b.string()) << bad;
   EXPECT_EQ(reported(bad, "busy"), "0") << bad;
   expect_ball(bad, centre_b, 25.0, "ball B after the garbage file");
   EXPECT_EQ(reported(bad, "triangles"), reported(typed, "triangles")) << bad << typed;
+  EXPECT_EQ(reported(bad, "error"), "") << bad;
+  // ... and it still adapts: a step forward takes it deeper, with no error.
+  EXPECT_EQ(reported(stepped, "step"), "1") << stepped;
+  EXPECT_EQ(reported(stepped, "error"), "") << stepped;
+  EXPECT_EQ(reported(stepped, "scene_text volume"), ball_b.string()) << stepped;
   // The DICOM folder, converted: the ball where the series puts it in RAS.
   EXPECT_EQ(reported(dicom, "scene_text volume"), (dir / "series").string()) << dicom;
   expect_ball(dicom, Vec3(-10, -20, 30), 30.0, "the DICOM series dropped");
   EXPECT_EQ(reported(dicom, "error"), "") << dicom;
+  EXPECT_EQ(reported(dicom, "open_error"), "") << dicom;
   // The .nii.gz dropped.
   expect_ball(gz, test::kBallCentre, test::kBallRadius, "ball A's .nii.gz dropped");
   EXPECT_EQ(reported(gz, "error"), "") << gz;
+  EXPECT_EQ(reported(gz, "open_error"), "") << gz;
 
   // While each scan loaded: the panel showed its stage, and frames went on being drawn.
   for (const char* loading : {"typing", "dicoming"}) {
