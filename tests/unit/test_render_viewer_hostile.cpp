@@ -127,6 +127,29 @@ TEST(ViewerHostile, StartsWhateverItsSavedStateHolds) {
   EXPECT_LT(r.output.size(), 4000u);  // the name is not echoed whole
 }
 
+// Session 4: a state file with 200,000 `param.` lines ran for minutes (make_scene kept the
+// last value per key by comparing every pair; killed at 60 s): now read in seconds, and the
+// first unknown parameter is the message.
+TEST(ViewerHostile, AStateWithManyParametersIsReadInSeconds) {
+  const fs::path dir = test::render_scratch("viewer_hostile_many");
+  const fs::path state = dir / "viewer.conf";
+  {
+    std::ofstream out(state);
+    out << "scene = sinc\n";
+    for (int i = 1; i <= 200000; ++i) out << "param.p" << i << " = 1\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const ViewerRun r = run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" +
+                                     (dir / "shot.png").string() + "'",
+                                 dir / "log.txt");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 2) << r.output.substr(0, 2000);
+  EXPECT_NE(r.output.find("error shown: sinc: no parameter 'p1'"), std::string::npos)
+      << r.output.substr(0, 2000);
+  EXPECT_LT(seconds, 40.0);  // xvfb-run's start included
+}
+
 // The formulas and settings that hung the CLI hang the viewer's worker the same way (a window
 // that never shows a mesh, a scripted run that never ends): the same up-front workload check
 // refuses them with its reason in the panel, and a scripted run exits 2.
@@ -139,6 +162,14 @@ TEST(ViewerHostile, SurfacesThatWouldHangAreRefusedWithTheReason) {
       {"overflow", "--scene expr --height-field 'exp(700*x)'", "not finite"},
       {"ripples", "--scene expr --height-field 'sin(1000*x)'", "more than the triangle budget"},
       {"tiny_threshold", "--scene sphere --threshold 1e-6", "more than the triangle budget"},
+      // Session 4: the edge-length demand (shared with dynamesh-cli, workload_check.h). Both
+      // ran for ever towards 10^8 triangles (killed at 60 s).
+      {"tiny_edge_length", "--scene sphere --edge-length 0.001",
+       "edges of at most the edge length 0.001 need at least about"},
+      {"tiny_scene_L", "--scene sphere --param L=0.001",
+       "edges of at most the scene's L 0.001 need at least about"},
+      {"tiny_edges_capsule", "--scene capsule-bend --edge-length 0.001",
+       "edges of at most the edge length 0.001 need at least about"},
   };
   for (const Case& c : cases) {
     const fs::path shot = dir / (c.name + ".png");
@@ -176,6 +207,26 @@ TEST(ViewerHostile, AThresholdNoBudgetCanMeetIsRefusedBeforeRefining) {
   const StepResult finer = sim.step(test::at(0.2, c));
   EXPECT_TRUE(finer.error.empty()) << finer.error;
   EXPECT_GT(finer.stats.triangles, 0u);
+}
+
+// The same for the edge length typed in the panel on a running mesh (a retune): refused before
+// refining, and the scene's own L works again after.
+TEST(ViewerHostile, AnEdgeLengthNoBudgetCanMeetIsRefusedBeforeRefining) {
+  Simulation sim;
+  SimulationControls c;
+  c.scene = "sphere";
+  ASSERT_TRUE(sim.step(test::at(0.2, c)).error.empty());
+  c.edge_length = 0.001;
+  const auto start = std::chrono::steady_clock::now();
+  const StepResult refused = sim.step(test::at(0.2, c));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_NE(refused.error.find("edges of at most the edge length 0.001"), std::string::npos)
+      << refused.error;
+  EXPECT_FALSE(refused.snapshot);
+  c.edge_length = 0.0;
+  const StepResult own = sim.step(test::at(0.2, c));
+  EXPECT_TRUE(own.error.empty()) << own.error;
+  EXPECT_GT(own.stats.triangles, 0u);
 }
 
 }  // namespace
