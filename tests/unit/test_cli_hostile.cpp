@@ -5,14 +5,17 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "cli_runner.h"
 #include "test_nifti_files.h"
@@ -398,6 +401,63 @@ TEST(CliHostile, MemoryIsGivenBackWhenTheMeshShrinks) {
   const double end = j["resident_mb"].get<double>(), peak = j["peak_resident_mb"].get<double>();
   EXPECT_GT(end, 0.0);
   EXPECT_LT(end, 0.7 * peak) << end << " MiB at the end, " << peak << " MiB at the peak";
+}
+
+std::vector<fs::path> files_under(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files.push_back(e.path());
+  return files;
+}
+
+// A run ended by a signal mid-way (`--render` and `--stats` open): no *.partial file stays,
+// the frames that stay are whole PNGs and the CSV does not appear. SIGHUP (the terminal
+// closed) and SIGPIPE (stdout's reader gone) left `s.csv.partial` and a `.png.partial`
+// (session 4); SIGINT and SIGTERM did not. A signal ignored by the parent (nohup) stays
+// ignored: the run goes on.
+TEST(CliHostile, SignalsLeaveNoPartialFile) {
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE, 0}) {
+    const bool ignored = signal == 0;  // SIGHUP under nohup
+    const int sent = ignored ? SIGHUP : signal;
+    const fs::path dir = test::scratch_dir("cli_hostile_signal_" + std::to_string(signal));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path frames = dir / "frames", csv = dir / "s.csv";
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+        ::_exit(126);
+      if (ignored) std::signal(SIGHUP, SIG_IGN);
+      ::execl(kCli.c_str(), "dynamesh-cli", "run", "--scene", "sinc", "--threshold", "0.002",
+              "--steps", "400", "--render", frames.c_str(), "--width", "160", "--height", "120",
+              "--stats", csv.c_str(), nullptr);
+      ::_exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while ((!fs::exists(frames) || files_under(frames).size() < 2) &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ::kill(child, sent);
+    int status = 0;
+    if (ignored) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      EXPECT_EQ(::waitpid(child, &status, WNOHANG), 0) << "SIGHUP ended a run that ignores it";
+      ::kill(child, SIGTERM);
+    }
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == (ignored ? SIGTERM : sent))
+        << "signal " << sent << ": status " << status;
+    EXPECT_FALSE(fs::exists(csv)) << "signal " << sent;
+    EXPECT_GE(files_under(dir).size(), 1u) << "signal " << sent;
+    for (const fs::path& f : files_under(dir)) {
+      EXPECT_EQ(f.extension(), ".png") << "signal " << sent << ": " << f;
+      std::ifstream in(f, std::ios::binary);
+      std::string magic(4, '\0');
+      in.read(magic.data(), 4);
+      EXPECT_EQ(magic, "\x89PNG") << f;
+    }
+  }
 }
 
 }  // namespace
