@@ -6,6 +6,9 @@
 
 #include <sys/wait.h>
 
+#include <csignal>
+#include <thread>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -148,6 +151,53 @@ TEST(ViewerHostile, AStateWithManyParametersIsReadInSeconds) {
   EXPECT_NE(r.output.find("error shown: sinc: no parameter 'p1'"), std::string::npos)
       << r.output.substr(0, 2000);
   EXPECT_LT(seconds, 40.0);  // xvfb-run's start included
+}
+
+// A scripted run ended by a signal (session 4) exited 0 with no word, its movie looking like
+// a finished recording: now it says it was stopped and what stays, and ends with 128 + the
+// signal as dynamesh-cli does. The screenshot and frame log of an unfinished run are not
+// written.
+TEST(ViewerHostile, ASignalEndsAScriptedRunWithItsStatus) {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    const fs::path dir = test::render_scratch("viewer_hostile_signal_" + std::to_string(signal));
+    const fs::path pid_file = dir / "pid", movie = dir / "movie.mp4";
+    // sh records its pid, then becomes the viewer: the signal goes to the viewer itself.
+    const std::string command =
+        "timeout -s KILL 60 xvfb-run -a -s '-screen 0 1280x800x24' sh -c 'echo $$ > \"" +
+        pid_file.string() + "\"; exec \"" + DYNAMESH_VIEWER +
+        "\" --fresh --width 400 --height 300 --scene sinc --play --run-for 50 --record \"" +
+        movie.string() + "\" --screenshot \"" + (dir / "shot.png").string() + "\" --frame-log \"" +
+        (dir / "frames.csv").string() + "\"' > \"" + (dir / "log.txt").string() + "\" 2>&1";
+    std::thread viewer([&] {
+      const int raw = std::system(command.c_str());
+      std::ofstream(dir / "status") << (WIFEXITED(raw) ? WEXITSTATUS(raw) : -1);
+    });
+    // Signalled once frames are being recorded (into movie.mp4.partial until it is done).
+    const fs::path partial = movie.string() + ".partial";
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(40);
+    std::error_code ec;
+    while (!(fs::exists(partial) && fs::file_size(partial, ec) > 0) &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    pid_t pid = 0;
+    std::ifstream(pid_file) >> pid;
+    ASSERT_GT(pid, 0);
+    ::kill(pid, signal);
+    viewer.join();
+    int status = -1;
+    std::ifstream(dir / "status") >> status;
+    std::ifstream in(dir / "log.txt");
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(status, 128 + signal) << log;
+    EXPECT_NE(log.find("stopped by signal " + std::to_string(signal) +
+                       " before the scripted run was done; recorded "),
+              std::string::npos)
+        << log;
+    EXPECT_TRUE(fs::exists(movie)) << log;  // a whole file of the frames so far, as said
+    EXPECT_FALSE(fs::exists(dir / "shot.png"));
+    EXPECT_FALSE(fs::exists(dir / "frames.csv"));
+  }
 }
 
 // The formulas and settings that hung the CLI hang the viewer's worker the same way (a window
