@@ -265,6 +265,10 @@ TEST(CliHostile, NumbersThatWrapOrVanishAreRefused) {
     expect_refused({"run", option, ""}, std::string(option) + " needs a value, got an empty");
   for (const char* bad : {"inf", "nan", "-inf", "1e400", "0x10", " 1", "1 "})
     expect_refused({"run", "--density", bad}, "--density expects a number");
+  // A camera distance of 1e38 rendered a blank picture with exit 0 (session 4: the viewer's
+  // saved state was checked, the shared --camera option was not).
+  for (const char* far : {"0,0,1e38", "0,0,-5", "0,0,0"})
+    expect_refused({"run", "--camera", far}, "--camera: the distance must be in [1e-4, 1e5]");
   // A newline in a name stays on the one line of the message.
   expect_refused({"run", "--scene", "mri\n"}, "mri\\n");
 }

@@ -51,6 +51,8 @@ TEST(ViewerHostile, CommandLineValuesAreCheckedAsTheCliChecksThem) {
             std::string::npos);
   EXPECT_NE(refusal({"--volume", ""}).find("--volume needs a value, got an empty string"),
             std::string::npos);
+  EXPECT_NE(refusal({"--camera", "0,0,1e38"}).find("the distance must be in [1e-4, 1e5]"),
+            std::string::npos);
   const std::string long_scene(20000, 'x');
   const std::string m = refusal({"--scene", long_scene});
   EXPECT_NE(m.find("unknown scene"), std::string::npos);
