@@ -151,16 +151,8 @@ void check_workload(const RunOptions& o, Surface& surface) {
   budget.max_triangles = static_cast<double>(o.adapt.max_triangles);
   budget.max_samples = static_cast<double>(o.adapt.max_samples);
   budget.hopeless = o.scene == "expr" ? 1.0 : 10.0;
-  WorkloadWords words;
-  // The sphere's L (or --edge-length in its place) sets the edges of its x >= 0 half.
-  if (o.edge_length > 0) budget.edge_length = o.edge_length;
-  for (const SurfaceParameter& p : surface.parameters())
-    if (o.scene == "sphere" && p.name == "L" && !(o.edge_length > 0)) {
-      budget.edge_length = p.value;
-      words.edge_length = "--param L";
-    }
-  if (o.scene == "sphere") budget.edge_length_share = 0.5;
-  const std::string reason = workload_refusal(surface, budget, *first, *last, words);
+  set_edge_length_demand(budget, o.scene, surface, o.edge_length);
+  const std::string reason = workload_refusal(surface, budget, *first, *last);
   if (!reason.empty()) throw UsageError("scene " + o.scene + " " + reason);
 }
 

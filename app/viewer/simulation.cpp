@@ -55,7 +55,13 @@ void check_workload(const SimulationControls& c, Surface& surface, double time) 
   budget.max_triangles = static_cast<double>(o.max_triangles);
   budget.max_samples = static_cast<double>(o.max_samples);
   budget.hopeless = c.scene == "expr" ? 1.0 : 10.0;
-  const WorkloadWords words{"T", "density", "the triangle budget", "the sample budget"};
+  set_edge_length_demand(budget, c.scene, surface, c.edge_length);
+  const WorkloadWords words{"T",
+                            "density",
+                            "the triangle budget",
+                            "the sample budget",
+                            "the edge length",
+                            "the scene's L"};
   std::string reason = workload_refusal(surface, budget, time, time, words);
   if (reason.empty())  // budgets only: a surface that breaks later shows its mesh until then
     reason = workload_refusal(surface, budget, 0.0, 1.0, words, 5, false);

@@ -40,11 +40,12 @@ constexpr int kMaxFps = 60;
 constexpr auto kMinFrameInterval =
     std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kMaxFps));
 
-// Ctrl-C or a polite kill ends the session like closing the window: settings are saved.
+// Ctrl-C or a polite kill ends the session like closing the window: settings are saved. The
+// signal's number, 0 until one comes.
 volatile std::sig_atomic_t g_stop_signal = 0;
 
-void on_stop_signal(int) {
-  g_stop_signal = 1;
+void on_stop_signal(int signal) {
+  g_stop_signal = signal;
 }
 
 double process_cpu_seconds() {
@@ -788,6 +789,14 @@ int ViewerApp::run() {
     }
   }
   if (recorder_.recording()) toggle_recording();
+  if (g_stop_signal != 0 && args_.scripted()) {
+    // Not done: say so, and what stays (the movie so far is a whole file, the screenshot and
+    // frame log were not written), and end as the CLI does (128 + signal; issue 15).
+    std::fprintf(stderr, "dynamesh: stopped by signal %d before the scripted run was done%s%s\n",
+                 static_cast<int>(g_stop_signal), args_.record.empty() ? "" : "; ",
+                 args_.record.empty() ? "" : status_.c_str());
+    status = 128 + g_stop_signal;
+  }
   if (!args_.state_file.empty() && !save_settings())
     std::fprintf(stderr, "dynamesh: %s\n", status_.c_str());
   return status;
