@@ -184,7 +184,8 @@ void log_topology(std::ostream& log, const StepStats& s) {
     log << "topology: no local repair at step " << s.step << ": " << why << "\n";
   if (s.local_repairs > 0 && !s.rebuilt)
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
-        << " faces near the event replaced; the other vertices kept)\n";
+        << " faces near the event replaced, the patch contoured at spacing " << std::setprecision(3)
+        << s.repair_spacing << "; the other vertices kept)\n";
   if (s.rebuilt)
     log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
         << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";

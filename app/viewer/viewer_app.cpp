@@ -279,6 +279,8 @@ bool ViewerApp::take_results() {
     if (r.error.empty() && r.stepped) {
       last_stats_ = r.stats;
       history_.add(r.stats);
+      for (const std::string& note : StatsHistory::topology_notes(r.stats))
+        std::fprintf(stderr, "dynamesh: topology: %s\n", note.c_str());
       new_step = true;
     }
     frames_to_draw_ = std::max(frames_to_draw_, 1);

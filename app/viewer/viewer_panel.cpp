@@ -19,6 +19,8 @@ ImU32 to_imgui(const glm::vec3& c) {
 }
 
 const ImVec4 kErrorColor(kPanelErrorRgb[0], kPanelErrorRgb[1], kPanelErrorRgb[2], 1.0f);
+// A topology event of the shown step (not an error: cyan, not red).
+const ImVec4 kEventColor(0.45f, 0.85f, 1.0f, 1.0f);
 
 // Committed on Enter only: a half-typed number (0.0 on the way to 0.0005) must not reach the
 // adapter.
@@ -355,6 +357,17 @@ void statistics_section(const ViewerState& state, const PanelInfo& info) {
     std::snprintf(overlay, sizeof overlay, "%s %.1f ms", name, 1e3 * seconds);
     ImGui::ProgressBar(p.total > 0 ? static_cast<float>(seconds / p.total) : 0.0f,
                        ImVec2(-FLT_MIN, 0), overlay);
+  }
+  // Topology events (issue 16): a merge is just another frame, but the panel says it happened
+  // and how the mesh followed; this step's in colour, the run's earlier ones greyed.
+  if (info.history != nullptr && !info.history->topology_events().empty()) {
+    const std::vector<std::string> now = StatsHistory::topology_notes(s);
+    for (const std::string& note : info.history->topology_events()) {
+      if (std::find(now.begin(), now.end(), note) != now.end())
+        ImGui::TextColored(kEventColor, "topology: %s", note.c_str());
+      else
+        ImGui::TextDisabled("topology: %s", note.c_str());
+    }
   }
   if (info.history != nullptr && info.history->size() > 1) {
     const StatsHistory::Series& h = info.history->series();
