@@ -88,13 +88,15 @@ struct Layer {
   double area = 0.0, volume = 0.0;
 };
 
-// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass.
-Layer measure_ply(const test::PlyData& ply) {
+// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass; with
+// `stretch`, of that mesh scaled by it along the world's axes.
+Layer measure_ply(const test::PlyData& ply, const Vec3& stretch = Vec3::Ones()) {
   Layer layer;
   for (const auto& f : ply.faces) {
     Vec3 p[3];
     for (int i = 0; i < 3; ++i)
-      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
+      p[i] = stretch.cwiseProduct(
+          Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]));
     layer.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     layer.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
   }
@@ -140,14 +142,7 @@ void expect_layers_scaled(const std::vector<VoxelVariant>& variants, const std::
   const test::PlyData mesh =
       test::read_ply((test::cli_scratch("mri_voxel_sizes") / ("ch2bet_" + tag + ".ply")).string());
   for (const VoxelVariant& v : variants) {
-    double expected = 0.0;
-    for (const auto& f : mesh.faces) {
-      Vec3 p[3];
-      for (int i = 0; i < 3; ++i)
-        for (int axis = 0; axis < 3; ++axis)
-          p[i][axis] = v.spacing[axis] * mesh.vertices[f[i]][axis];
-      expected += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    }
+    const double expected = measure_ply(mesh, v.spacing).area;
     const std::string name = "voxels_" + std::to_string(v.spacing[0]) + "x" +
                              std::to_string(v.spacing[2]) + "_turned_" +
                              std::to_string(int(v.degrees));
@@ -334,13 +329,7 @@ TEST(MriVoxelSizes, AnisotropicVoxelsGiveTheStretchedLayer) {
   const auto dir = test::scratch_dir("mri_anisotropic");
   const LayerMesh reference = coarse_layer_of(kBrain, "anisotropic_reference");
   ASSERT_GT(reference.layer.area, 0.0);
-  double stretched_area = 0.0;
-  {
-    std::vector<Vec3> p;
-    for (const auto& v : reference.ply.vertices) p.emplace_back(v[0], v[1], 3.0 * v[2]);
-    for (const auto& f : reference.ply.faces)
-      stretched_area += 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
-  }
+  const double stretched_area = measure_ply(reference.ply, Vec3(1.0, 1.0, 3.0)).area;
   const LayerMesh z3 = coarse_layer_of(
       resformed_brain(dir, "z3", Vec3(1.0, 1.0, 3.0).asDiagonal().toDenseMatrix()), "z3");
   EXPECT_NEAR(z3.layer.volume / (3.0 * reference.layer.volume), 1.0, 0.10) << z3.layer.volume;
