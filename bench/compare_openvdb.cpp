@@ -27,9 +27,9 @@
 
 #include "bench/comparison_measure.h"
 #include "core/adapt/adapter.h"
-#include "core/adapt/criteria.h"
 #include "core/io/number_text.h"
 #include "core/surface/scene_registry.h"
+#include "tests/support/error_only_adapter.h"
 
 namespace dynamesh::compare {
 namespace {
@@ -106,10 +106,8 @@ ComparisonRow run_dynamesh(const Config& c, const std::string& scene, double thr
   AdaptOptions o;
   o.threshold = threshold;
   o.epsilon = threshold / 4;
-  CriterionList criteria;
-  criteria.push_back(std::make_unique<GeometricErrorCriterion>(o.threshold, o.epsilon));
-  Adapter adapter(*surface, o, std::move(criteria));
-  adapter.initialize();
+  const std::unique_ptr<Adapter> owned = test::error_only_adapter(*surface, o);
+  Adapter& adapter = *owned;
   ComparisonRow row{"dynamesh", scene, threshold, c.frames, c.threads};
   std::vector<double> cpu, wall, survival, triangles;
   row.dense_error_max = dense_error(*surface, soup_of(adapter.mesh()), c.points_per_face, 1);

@@ -39,7 +39,7 @@ std::string one_line(const std::string& text) {
 int main(int argc, char** argv) {
   using namespace dynamesh;
   const std::vector<std::string> args(argv + 1, argv + argc);
-  // Ctrl-C or SIGTERM: no *.partial file stays; frames already complete do (README).
+  // Ctrl-C, SIGTERM, SIGHUP, SIGPIPE: no *.partial file stays; complete frames do (README).
   remove_partial_files_on_signal();
   try {
     if (!args.empty() && args[0] == "--version") {

@@ -151,16 +151,8 @@ void check_workload(const RunOptions& o, Surface& surface) {
   budget.max_triangles = static_cast<double>(o.adapt.max_triangles);
   budget.max_samples = static_cast<double>(o.adapt.max_samples);
   budget.hopeless = o.scene == "expr" ? 1.0 : 10.0;
-  WorkloadWords words;
-  // The sphere's L (or --edge-length in its place) sets the edges of its x >= 0 half.
-  if (o.edge_length > 0) budget.edge_length = o.edge_length;
-  for (const SurfaceParameter& p : surface.parameters())
-    if (o.scene == "sphere" && p.name == "L" && !(o.edge_length > 0)) {
-      budget.edge_length = p.value;
-      words.edge_length = "--param L";
-    }
-  if (o.scene == "sphere") budget.edge_length_share = 0.5;
-  const std::string reason = workload_refusal(surface, budget, *first, *last, words);
+  set_edge_length_demand(budget, o.scene, surface, o.edge_length);
+  const std::string reason = workload_refusal(surface, budget, *first, *last);
   if (!reason.empty()) throw UsageError("scene " + o.scene + " " + reason);
 }
 
@@ -192,7 +184,8 @@ void log_topology(std::ostream& log, const StepStats& s) {
     log << "topology: no local repair at step " << s.step << ": " << why << "\n";
   if (s.local_repairs > 0 && !s.rebuilt)
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
-        << " faces near the event replaced; the other vertices kept)\n";
+        << " faces near the event replaced, the patch contoured at spacing " << std::setprecision(3)
+        << s.repair_spacing << "; the other vertices kept)\n";
   if (s.rebuilt)
     log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
         << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";

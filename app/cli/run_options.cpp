@@ -378,8 +378,8 @@ Output:
   --check                verify the mesh invariants after every step (slow)
   --quiet                no progress lines
 Files are written whole or not at all (a temporary name, then renamed); /dev/stdout, a
-FIFO or - are written directly. A run stopped by Ctrl-C or SIGTERM leaves no partial
-file: frames already written stay, the CSV and the final mesh do not appear.
+FIFO or - are written directly. A run stopped by Ctrl-C, SIGTERM, SIGHUP or SIGPIPE leaves
+no partial file: frames already written stay, the CSV and the final mesh do not appear.
 )";
 }
 

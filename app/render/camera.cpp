@@ -52,8 +52,9 @@ CameraView parse_camera_view(const std::string& text) {
     throw std::invalid_argument("expects fit or AZIMUTH,ELEVATION[,DISTANCE], got '" + text + "'");
   if (std::abs(numbers[1]) > 90.0f)
     throw std::invalid_argument("the elevation must lie in [-90, 90] degrees");
-  if (numbers.size() == 3 && !(numbers[2] > 0.0f))
-    throw std::invalid_argument("the distance must be positive");
+  // The range a saved viewer state may hold (viewer_args.cpp): 1e38 rendered a blank picture.
+  if (numbers.size() == 3 && !(numbers[2] >= 1e-4f && numbers[2] <= 1e5f))
+    throw std::invalid_argument("the distance must be in [1e-4, 1e5] scene units");
   v.fit = false;
   v.azimuth_deg = numbers[0];
   v.elevation_deg = numbers[1];

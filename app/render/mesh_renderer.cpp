@@ -143,6 +143,7 @@ void MeshRenderer::draw(const Camera& camera, const RenderStyle& style,
   p.set("u_intensity", 1);
   p.set("u_labels", 2);
   if (from_volume) {
+    volume_.prepare(style.mode == ColorMode::kIntensity, style.mode == ColorMode::kRegion);
     volume_.bind();
     p.set("u_world_to_texture", volume_.world_to_texture());
     p.set("u_world_to_label", volume_.world_to_label());

@@ -62,6 +62,7 @@ class MeshRenderer {
   // The scan of the last snapshot (null for analytic scenes) and how often it was uploaded.
   const std::shared_ptr<const VolumeImage>& volume() const { return volume_.image(); }
   int volume_uploads() const { return volume_.uploads(); }
+  double volume_upload_ms() const { return volume_.upload_ms(); }
   // Whether `mode` is drawn from the scan per fragment (intensity, region) rather than from
   // a per-vertex field.
   bool samples_volume(ColorMode mode) const;

@@ -1,5 +1,7 @@
 #include "app/render/volume_textures.h"
 
+#include <chrono>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/render/gl_api.h"
@@ -45,9 +47,15 @@ VolumeTextures::~VolumeTextures() {
 
 void VolumeTextures::set(const std::shared_ptr<const VolumeImage>& image) {
   image_ = image;
+}
+
+void VolumeTextures::prepare(bool intensity, bool labels) {
+  const std::shared_ptr<const VolumeImage>& image = image_;
   if (!image) return;
+  const auto start = std::chrono::steady_clock::now();
+  const int uploads_before = uploads_;
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (image->intensity && image->intensity != intensity_uploaded_) {
+  if (intensity && image->intensity && image->intensity != intensity_uploaded_) {
     const ScalarVolume& v = *image->intensity;
     gl::BindTexture(GL_TEXTURE_3D, intensity_texture_);
     gl::TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, v.grid.dims[0], v.grid.dims[1], v.grid.dims[2], 0,
@@ -60,7 +68,7 @@ void VolumeTextures::set(const std::shared_ptr<const VolumeImage>& image) {
     intensity_uploaded_ = image->intensity;
     ++uploads_;
   }
-  if (image->atlas && image->atlas != labels_uploaded_) {
+  if (labels && image->atlas && image->atlas != labels_uploaded_) {
     const VoxelVolume<std::int32_t>& l = image->atlas->labels;
     gl::BindTexture(GL_TEXTURE_3D, label_texture_);
     gl::TexImage3D(GL_TEXTURE_3D, 0, GL_R32I, l.grid.dims[0], l.grid.dims[1], l.grid.dims[2], 0,
@@ -69,6 +77,9 @@ void VolumeTextures::set(const std::shared_ptr<const VolumeImage>& image) {
     labels_uploaded_ = image->atlas;
     ++uploads_;
   }
+  if (uploads_ != uploads_before)
+    upload_ms_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void VolumeTextures::bind() const {

@@ -1,8 +1,10 @@
 // A VolumeImage on the GPU: the intensities as a 3-D float texture (linear filtering: the
 // trilinear interpolation between voxel centres that TrilinearSampler does on the CPU) and
 // the label atlas as a 3-D integer texture (read with texelFetch at the nearest voxel).
-// Uploaded once per scan (the snapshots share one VolumeImage), never per frame; GL 3.3 core,
-// so it works on OSMesa's llvmpipe as in the window.
+// Uploaded once per scan (the snapshots share one VolumeImage), never per frame, and only
+// when a frame first samples it: the labels (as large as the scan) wait for the region
+// colours, and neither delays the first frame of a shaded layer. GL 3.3 core, so it works on
+// OSMesa's llvmpipe as in the window.
 #pragma once
 
 #include <memory>
@@ -20,8 +22,10 @@ class VolumeTextures {
   VolumeTextures(const VolumeTextures&) = delete;
   VolumeTextures& operator=(const VolumeTextures&) = delete;
 
-  // Uploads what differs from the image already on the GPU (nothing when it is the same).
+  // The scan of the snapshot on screen; nothing is uploaded yet.
   void set(const std::shared_ptr<const VolumeImage>& image);
+  // Uploads the intensities and/or the labels when the GPU does not hold this scan's yet.
+  void prepare(bool intensity, bool labels);
   const std::shared_ptr<const VolumeImage>& image() const { return image_; }
   bool has_intensity() const { return image_ && image_->intensity; }
   bool has_labels() const { return image_ && image_->atlas; }
@@ -32,6 +36,7 @@ class VolumeTextures {
   // World millimetres -> label voxel index (centres at integers).
   glm::mat4 world_to_label() const { return world_to_label_; }
   int uploads() const { return uploads_; }
+  double upload_ms() const { return upload_ms_; }  // spent uploading, all scans so far
 
  private:
   std::shared_ptr<const VolumeImage> image_;
@@ -42,6 +47,7 @@ class VolumeTextures {
   unsigned intensity_texture_ = 0, label_texture_ = 0;
   glm::mat4 world_to_texture_{1.0f}, world_to_label_{1.0f};
   int uploads_ = 0;
+  double upload_ms_ = 0.0;
 };
 
 // The inverse of a grid's voxel -> world map as a 4x4 matrix (world -> voxel index).

@@ -48,14 +48,28 @@ std::string describe(const FrameSummary& s) {
   return text;
 }
 
+std::string describe(const StartupTiming& s) {
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "first mesh on screen %.2f s after start (process CPU %.2f s): window %.2f s; "
+                "scene built %.2f s (CPU %.2f s); first adaptation %.2f s (CPU %.2f s); "
+                "snapshot %.3f s; mesh upload %.1f ms; first draw %.1f ms (of it the scan's 3-D "
+                "texture upload %.1f ms); %zu frames before it took %.1f ms",
+                s.first_mesh_seconds, s.first_mesh_cpu_seconds, s.window_seconds, s.build_seconds,
+                s.build_cpu_seconds, s.adapt_seconds, s.adapt_cpu_seconds, s.snapshot_seconds,
+                std::max(0.0, s.upload_ms), s.first_draw_ms, s.volume_upload_ms, s.frames_before,
+                s.frames_before_ms);
+  return text;
+}
+
 void write_frame_log(const std::vector<FrameSample>& frames, const std::string& path) {
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "frame,at_ms,work_ms,handoff_ms,draw_ms,new_step,triangles\n";
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const FrameSample& f = frames[i];
-    out << i << ',' << f.at_ms << ',' << f.work_ms << ',' << f.handoff_ms << ',' << f.draw_ms
-        << ',' << (f.new_step ? 1 : 0) << ',' << f.triangles << '\n';
+    out << i << ',' << f.at_ms << ',' << f.work_ms << ',' << f.handoff_ms << ',' << f.draw_ms << ','
+        << (f.new_step ? 1 : 0) << ',' << f.triangles << '\n';
   }
   file.commit();
 }

@@ -28,9 +28,27 @@ struct FrameSummary {
   double quiet_work_max_ms = 0.0;
 };
 
+// Where the time to the first mesh on screen went (issue 14: a scan's first adapted frame),
+// counted from the viewer's start (before its window opens) to the end of the first frame
+// that shows a mesh. The worker's spans also carry the process's CPU time over them (all
+// threads): on a shared machine the wall time is the load's, the CPU time the viewer's.
+struct StartupTiming {
+  double window_seconds = 0.0;                          // the window and its OpenGL context
+  double build_seconds = 0.0, build_cpu_seconds = 0.0;  // the scene (mri: read, prepare)
+  double adapt_seconds = 0.0, adapt_cpu_seconds = 0.0;  // the first adaptation
+  double snapshot_seconds = 0.0;                        // its read-only copy
+  double upload_ms = -1.0;                              // the first mesh to the GPU
+  double first_draw_ms = 0.0;     // the first frame with the mesh (shaders compile here)
+  double volume_upload_ms = 0.0;  // of which the scan's 3-D texture (uploaded when drawn)
+  std::size_t frames_before = 0;  // frames before the mesh (panel, loading progress)
+  double frames_before_ms = 0.0;  // and their work
+  double first_mesh_seconds = 0.0, first_mesh_cpu_seconds = 0.0;
+};
+
 FrameSummary summarize(const std::vector<FrameSample>& frames, double seconds);
 // One line, e.g. for the end of a scripted run.
 std::string describe(const FrameSummary& s);
+std::string describe(const StartupTiming& s);
 // CSV with a header; throws std::runtime_error when the file cannot be written.
 void write_frame_log(const std::vector<FrameSample>& frames, const std::string& path);
 

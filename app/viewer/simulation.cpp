@@ -1,6 +1,8 @@
 #include "app/viewer/simulation.h"
 
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <exception>
 #include <stdexcept>
 
@@ -9,6 +11,18 @@
 
 namespace dynamesh {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 bool same_surface(const SimulationControls& a, const SimulationControls& b) {
   return a.scene == b.scene && a.scene_text == b.scene_text &&
@@ -41,7 +55,13 @@ void check_workload(const SimulationControls& c, Surface& surface, double time) 
   budget.max_triangles = static_cast<double>(o.max_triangles);
   budget.max_samples = static_cast<double>(o.max_samples);
   budget.hopeless = c.scene == "expr" ? 1.0 : 10.0;
-  const WorkloadWords words{"T", "density", "the triangle budget", "the sample budget"};
+  set_edge_length_demand(budget, c.scene, surface, c.edge_length);
+  const WorkloadWords words{"T",
+                            "density",
+                            "the triangle budget",
+                            "the sample budget",
+                            "the edge length",
+                            "the scene's L"};
   std::string reason = workload_refusal(surface, budget, time, time, words);
   if (reason.empty())  // budgets only: a surface that breaks later shows its mesh until then
     reason = workload_refusal(surface, budget, 0.0, 1.0, words, 5, false);
@@ -94,15 +114,23 @@ std::unique_ptr<Surface> Simulation::surface_for(const SimulationControls& c) {
   return make_scene(c.scene, c.scene_parameters, c.scene_text, progress_);
 }
 
-void Simulation::rebuild(const StepRequest& request) {
+void Simulation::rebuild(const StepRequest& request, StepTimings& timings) {
   const SimulationControls& c = request.controls;
+  Clock::time_point start = Clock::now();
+  double cpu = process_cpu_seconds();
   std::unique_ptr<Surface> surface = surface_for(c);
   adapter_.reset();
   surface_ = std::move(surface);
   built_ = c;  // also when the adapter fails below: surface_ matches c
   check_workload(c, *surface_, request.time);
+  timings.build_seconds = seconds_since(start);
+  timings.build_cpu_seconds = process_cpu_seconds() - cpu;
+  start = Clock::now();
+  cpu = process_cpu_seconds();
   adapter_ = std::make_unique<Adapter>(*surface_, adapt_options(c), criteria_for(c, *surface_));
   adapter_->initialize();
+  timings.adapt_seconds = seconds_since(start);
+  timings.adapt_cpu_seconds = process_cpu_seconds() - cpu;
 }
 
 SnapshotFields Simulation::snapshot_fields(const SnapshotFields& requested) const {
@@ -128,8 +156,9 @@ StepResult Simulation::step(const StepRequest& request) {
   try {
     const bool new_adapter =
         request.restart || !adapter_ || !same_surface(c, built_) || c.seed != built_.seed;
+    StepTimings timings;
     if (new_adapter) {
-      rebuild(request);
+      rebuild(request, timings);
       result.stepped = true;
     } else {
       const bool retune = !same_adaptation(c, built_);
@@ -139,13 +168,20 @@ StepResult Simulation::step(const StepRequest& request) {
         built_ = c;
       }
       if (retune || request.time != surface_->time()) {
+        const Clock::time_point start = Clock::now();
+        const double cpu = process_cpu_seconds();
         adapter_->step(request.time);
+        timings.adapt_seconds = seconds_since(start);
+        timings.adapt_cpu_seconds = process_cpu_seconds() - cpu;
         result.stepped = true;
       }
     }
     failed_.reset();
+    const Clock::time_point start = Clock::now();
     result.snapshot =
         std::make_shared<const MeshSnapshot>(adapter_->snapshot(snapshot_fields(request.fields)));
+    timings.snapshot_seconds = seconds_since(start);
+    result.timings = timings;
     result.stats = adapter_->stats();
     result.scene = built_.scene;
     result.scene_text = built_.scene_text;

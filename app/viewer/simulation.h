@@ -21,6 +21,7 @@
 // again until they change or a restart is asked for.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -59,6 +60,15 @@ struct StepRequest {
   // Per-vertex fields the snapshot carries besides the error (which it always has); surface
   // point quantities the viewer can colour by ("intensity") are added when the scene has them.
   SnapshotFields fields;
+  std::uint64_t id = 0;  // echoed in the result: which request a result answers
+};
+
+// Where a request's time went (the first adapted frame of a scan: issue 14). Wall seconds,
+// and the process's CPU seconds over the same span (all threads: OpenMP's team included).
+struct StepTimings {
+  double build_seconds = 0.0, build_cpu_seconds = 0.0;  // a new surface (mri: read, prepare)
+  double adapt_seconds = 0.0, adapt_cpu_seconds = 0.0;  // initialisation or step
+  double snapshot_seconds = 0.0;
 };
 
 struct StepResult {
@@ -69,6 +79,8 @@ struct StepResult {
   std::string scene;                         // the scene the adapter runs on
   TextOptions scene_text;                    // and its text options (the formula of expr)
   std::vector<SurfaceParameter> parameters;  // its parameters, current values and ranges
+  std::uint64_t request_id = 0;              // StepRequest::id of the request answered
+  StepTimings timings;
 };
 
 class Simulation {
@@ -87,7 +99,7 @@ class Simulation {
   // The surface for `controls`: the current one with new parameter values when only those
   // changed, otherwise a new one from the catalogue. Throws what make_scene throws.
   std::unique_ptr<Surface> surface_for(const SimulationControls& controls);
-  void rebuild(const StepRequest& request);
+  void rebuild(const StepRequest& request, StepTimings& timings);
   SnapshotFields snapshot_fields(const SnapshotFields& requested) const;
 
   std::unique_ptr<Surface> surface_;

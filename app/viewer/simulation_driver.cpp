@@ -6,10 +6,28 @@
 namespace dynamesh {
 namespace {
 constexpr int kWorkerNiceness = 10;
-}
+// A redraw costs the UI thread tens of milliseconds on a software renderer, taken from the
+// loading it shows: a few per second.
+constexpr std::chrono::milliseconds kProgressInterval(200);
+}  // namespace
 
-SimulationDriver::SimulationDriver(std::function<void()> on_result)
-    : on_result_(std::move(on_result)), worker_([this] { run(); }) {}
+SimulationDriver::SimulationDriver(std::function<void()> on_result,
+                                   std::function<void()> on_progress)
+    : on_result_(std::move(on_result)),
+      on_progress_(std::move(on_progress)),
+      worker_([this] { run(); }) {}
+
+void SimulationDriver::set_progress(std::string_view stage, double fraction) {
+  {
+    std::lock_guard lock(mutex_);
+    progress_ = std::string(stage) + " " + std::to_string(static_cast<int>(100 * fraction)) + "%";
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (on_progress_ && now - progress_told_ >= kProgressInterval) {
+    progress_told_ = now;
+    on_progress_();
+  }
+}
 
 SimulationDriver::~SimulationDriver() {
   {
@@ -70,6 +88,7 @@ void SimulationDriver::run() {
     running_step_ = computing_ = true;
     lock.unlock();
     StepResult result = simulation_.step(request);  // the long part, unlocked
+    result.request_id = request.id;
     lock.lock();
     // A failed request keeps showing the last good mesh, with the error beside it.
     if (!result.snapshot) result.snapshot = latest_.snapshot;

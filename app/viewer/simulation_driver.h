@@ -5,12 +5,14 @@
 // the renderer reads them while the worker builds the next.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string_view>
 #include <thread>
 
 #include "app/viewer/simulation.h"
@@ -21,7 +23,10 @@ class SimulationDriver {
  public:
   // `on_result` (optional) is called on the worker thread after each result is published,
   // e.g. to wake a UI thread that sleeps waiting for events.
-  explicit SimulationDriver(std::function<void()> on_result = {});
+  // `on_progress` (optional, worker thread) hears that the loading progress moved, at most
+  // every kProgressInterval, e.g. to wake the UI thread so the panel shows it.
+  explicit SimulationDriver(std::function<void()> on_result = {},
+                            std::function<void()> on_progress = {});
   ~SimulationDriver();  // finishes the running step, drops pending ones, joins
   SimulationDriver(const SimulationDriver&) = delete;
   SimulationDriver& operator=(const SimulationDriver&) = delete;
@@ -43,11 +48,12 @@ class SimulationDriver {
  private:
   void run();
 
-  Simulation simulation_{[this](std::string_view stage, double fraction) {
-    std::lock_guard lock(mutex_);
-    progress_ = std::string(stage) + " " + std::to_string(static_cast<int>(100 * fraction)) + "%";
-  }};
-  std::function<void()> on_result_;
+  void set_progress(std::string_view stage, double fraction);
+
+  Simulation simulation_{
+      [this](std::string_view stage, double fraction) { set_progress(stage, fraction); }};
+  std::function<void()> on_result_, on_progress_;
+  std::chrono::steady_clock::time_point progress_told_;  // worker thread only
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::optional<StepRequest> pending_;

@@ -40,11 +40,18 @@ constexpr int kMaxFps = 60;
 constexpr auto kMinFrameInterval =
     std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kMaxFps));
 
-// Ctrl-C or a polite kill ends the session like closing the window: settings are saved.
+// Ctrl-C or a polite kill ends the session like closing the window: settings are saved. The
+// signal's number, 0 until one comes.
 volatile std::sig_atomic_t g_stop_signal = 0;
 
-void on_stop_signal(int) {
-  g_stop_signal = 1;
+void on_stop_signal(int signal) {
+  g_stop_signal = signal;
+}
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 double ms_since(Clock::time_point start) {
@@ -89,10 +96,11 @@ struct Drag {
 class ViewerApp {
  public:
   explicit ViewerApp(const ViewerArgs& args)
-      : args_(args),
+      : created_(Clock::now()),
+        args_(args),
         state_(args.state),
         window_(state_.window_width, state_.window_height, "dynamesh"),
-        driver_([] { GlfwWindow::wake(); }),
+        driver_([] { GlfwWindow::wake(); }, [] { GlfwWindow::wake(); }),
         scenes_(list_scenes()),
         examples_(load_formula_examples(find_examples_dir())),
         // Multisampling doubles the cost of a frame on a software renderer: there, none.
@@ -100,6 +108,7 @@ class ViewerApp {
         // --camera: the first mesh is framed with that view, whatever was saved.
         fitted_scene_(args.camera ? std::string() : args.camera_scene),
         fitted_text_(args.camera_text) {
+    startup_.window_seconds = ms_since(created_) * 1e-3;
     status_ = args.notice;  // e.g. why the saved settings were not used
     if (const char* path = std::getenv("DYNAMESH_WIDGET_REPORT")) widget_report_path_ = path;
     if (state_.window_x >= 0 && state_.window_y >= 0)
@@ -113,7 +122,8 @@ class ViewerApp {
   // --- simulation ---------------------------------------------------------------------
   void request(double time, bool restart) {
     state_.time = time;
-    driver_.request_step({time, state_.controls, restart, fields_for(state_.style.mode)});
+    driver_.request_step(
+        {time, state_.controls, restart, fields_for(state_.style.mode), ++requests_made_});
   }
   void step_by(int direction);
   // Takes a new result if one was published; true when it shows a new step.
@@ -128,6 +138,9 @@ class ViewerApp {
   void pick(const glm::vec2& ndc);
   // A scan dropped on the window (or typed): the mri scene on it, loaded on the worker.
   void open_scan(const std::string& path);
+  // The answer to open_scan's request: a scan that cannot be read leaves the scene that was
+  // on screen as it was (its controls back, its mesh adapted again), with the reason shown.
+  void finish_opening(const StepResult& r);
   // What the scan says at the probed point; nullopt without a scan or a point.
   std::optional<VolumeProbe> current_probe() const;
   // The probed point marked in the 3D view, and the slices through it.
@@ -148,6 +161,7 @@ class ViewerApp {
   // frame is then left in the back buffer, unswapped, for the screenshot).
   bool frame(bool timed_out);
 
+  const Clock::time_point created_;
   ViewerArgs args_;
   ViewerState state_;
   GlfwWindow window_;
@@ -176,13 +190,25 @@ class ViewerApp {
   VideoRecorder recorder_;
   Drag drag_;
   SlicePanel slices_;
-  std::string progress_shown_;  // the loading progress the panel shows
+  std::string progress_shown_;       // the loading progress the panel shows
+  std::uint64_t requests_made_ = 0;  // StepRequest::id of the last request
+  // A scan being opened: its path, the request that loads it, and the state to go back to.
+  struct OpeningScan {
+    std::string path;
+    std::uint64_t request = 0;
+    ViewerState before;
+  };
+  std::optional<OpeningScan> opening_;
+  std::string open_error_;  // why the last scan opened could not be loaded
+  std::uint64_t frames_drawn_ = 0;
+  StartupTiming startup_;
   float fps_ = 0.0f;
   // Redraw only when something happened: input, a new result, or frames ImGui still needs.
   std::uint64_t input_events_seen_ = 0;
   int frames_to_draw_ = 2;
   std::vector<FrameSample> frames_;
   Clock::time_point started_, first_mesh_, last_frame_start_;
+  std::optional<Clock::time_point> first_mesh_shown_;
   int scripted_frames_ = 0;
   // Test affordance (widget_report.h): the file named by DYNAMESH_WIDGET_REPORT, and what
   // was last written to it.
@@ -226,6 +252,13 @@ bool ViewerApp::take_results() {
     results_seen_ = published;
     const StepResult r = driver_.latest_result();
     error_ = r.error;
+    if (startup_.build_seconds == 0.0 && r.timings.build_seconds > 0.0) {
+      startup_.build_seconds = r.timings.build_seconds;
+      startup_.build_cpu_seconds = r.timings.build_cpu_seconds;
+      startup_.adapt_seconds = r.timings.adapt_seconds;
+      startup_.adapt_cpu_seconds = r.timings.adapt_cpu_seconds;
+      startup_.snapshot_seconds = r.timings.snapshot_seconds;
+    }
     if (!r.error.empty()) {
       state_.playing = false;  // the time would run on while the mesh stands still
     } else {
@@ -238,11 +271,16 @@ bool ViewerApp::take_results() {
     if (r.snapshot && r.snapshot != snapshot_) {
       snapshot_ = r.snapshot;
       ++snapshots_taken_;
+      const Clock::time_point start = Clock::now();
       renderer_.set_geometry(*snapshot_);  // once per step, never per frame
+      if (startup_.upload_ms < 0.0) startup_.upload_ms = ms_since(start);
     }
+    if (opening_ && r.request_id >= opening_->request) finish_opening(r);
     if (r.error.empty() && r.stepped) {
       last_stats_ = r.stats;
       history_.add(r.stats);
+      for (const std::string& note : StatsHistory::topology_notes(r.stats))
+        std::fprintf(stderr, "dynamesh: topology: %s\n", note.c_str());
       new_step = true;
     }
     frames_to_draw_ = std::max(frames_to_draw_, 1);
@@ -359,10 +397,40 @@ void ViewerApp::pick(const glm::vec2& ndc) {
 }
 
 void ViewerApp::open_scan(const std::string& path) {
+  // Opened while another is still loading: back to what was on screen before both.
+  ViewerState before = opening_ ? opening_->before : state_;
   if (state_.controls.scene != "mri") switch_scene(state_, "mri");
-  state_.controls.scene_text = {{"volume", path}};
+  // The scan's own options only (a mask or an atlas belongs to the scan they came with).
+  state_.controls.scene_text.clear();
+  if (!path.empty()) state_.controls.scene_text = {{"volume", path}};
+  state_.controls.scene_parameters.clear();
   state_.probe.reset();
-  status_ = "opening " + path;
+  open_error_.clear();
+  std::error_code ec;
+  const bool folder = fs::is_directory(path, ec);
+  status_ = "opening " + (path.empty() ? std::string("the default scan") : path) +
+            (folder ? " (a DICOM series folder: converting it with dcm2niix)" : "");
+  request(state_.time, true);
+  opening_ = OpeningScan{path, requests_made_, std::move(before)};
+}
+
+void ViewerApp::finish_opening(const StepResult& r) {
+  const OpeningScan opened = std::move(*opening_);
+  opening_.reset();
+  if (r.error.empty()) {
+    status_ = "opened " + (opened.path.empty() ? std::string("the default scan") : opened.path);
+    return;
+  }
+  open_error_ = "cannot open " + opened.path + ": " + r.error;
+  status_.clear();
+  const ViewerState& b = opened.before;
+  state_.controls = b.controls;
+  state_.scene_settings = b.scene_settings;
+  state_.style.colors.threshold = b.style.colors.threshold;
+  state_.probe = b.probe;
+  error_.clear();
+  // The failed request dropped the adapter; the scene's surface was kept (simulation.h), so
+  // this adapts the mesh again without reading the old scan again.
   request(state_.time, true);
 }
 
@@ -459,6 +527,7 @@ void ViewerApp::apply(const PanelActions& a) {
   if (a.fit) state_.camera.fit(renderer_.bounds(), aspect);
   if (a.reset_camera) state_.camera.reset(renderer_.bounds(), aspect);
   if (a.toggle_recording) toggle_recording();
+  if (a.open_requested) open_scan(a.open_path);
   if (a.save_settings) save_settings();
 }
 
@@ -537,9 +606,20 @@ bool ViewerApp::save_settings() {
 }
 
 void ViewerApp::report_widgets(const std::vector<WidgetRect>& widgets, const VolumeProbe* probe) {
-  const std::string text = widget_report(widgets, state_.controls,
-                                         {results_seen_, driver_.busy(), snapshot_.get(),
-                                          last_stats_.samples, last_stats_.mean_error, probe});
+  ShownState shown;
+  shown.results = results_seen_;
+  shown.busy = driver_.busy();
+  shown.mesh = snapshot_.get();
+  shown.samples = last_stats_.samples;
+  shown.mean_error = last_stats_.mean_error;
+  shown.probe = probe;
+  shown.frames = frames_drawn_;
+  shown.progress = progress_shown_;
+  shown.scene = running_scene_;
+  shown.scene_text = &running_text_;
+  shown.error = error_;
+  shown.open_error = open_error_;
+  const std::string text = widget_report(widgets, state_.controls, shown);
   if (text == widget_report_written_) return;
   try {
     AtomicFile file(widget_report_path_);  // whole, so a reader never sees half of it
@@ -579,6 +659,7 @@ int ViewerApp::finish_scripted(double seconds) {
       running_scene_.c_str(), static_cast<unsigned long long>(last_stats_.step), up.full,
       up.geometry, up.scalar);
   std::printf("dynamesh: %s\n", describe(summarize(frames_, seconds)).c_str());
+  if (first_mesh_shown_) std::printf("dynamesh: %s\n", describe(startup_).c_str());
   if (!error_.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "dynamesh: error shown: %s\n", error_.c_str());
@@ -618,6 +699,7 @@ bool ViewerApp::frame(bool timed_out) {
   info.history = &history_;
   info.last = last_stats_;
   info.error = error_;
+  info.open_error = open_error_;
   info.status = status_;
   info.settings = args_.state_file;
   info.busy = driver_.busy();
@@ -665,6 +747,18 @@ bool ViewerApp::frame(bool timed_out) {
   sample.draw_ms = ms_since(draw_start);
   sample.work_ms = ms_since(frame_start);
   sample.triangles = renderer_.n_triangles();
+  ++frames_drawn_;
+  if (!first_mesh_shown_ && renderer_.has_mesh()) {
+    first_mesh_shown_ = Clock::now();
+    startup_.first_mesh_seconds =
+        std::chrono::duration<double>(*first_mesh_shown_ - created_).count();
+    startup_.first_mesh_cpu_seconds = process_cpu_seconds();
+    startup_.first_draw_ms = sample.draw_ms;
+    startup_.volume_upload_ms = renderer_.volume_upload_ms();
+  } else if (!first_mesh_shown_) {
+    ++startup_.frames_before;
+    startup_.frames_before_ms += sample.work_ms;
+  }
   // Timing counts from the first frame with a mesh: before it, the panel alone is drawn.
   if (args_.scripted() && renderer_.has_mesh()) {
     if (frames_.empty()) first_mesh_ = frame_start;
@@ -697,6 +791,14 @@ int ViewerApp::run() {
     }
   }
   if (recorder_.recording()) toggle_recording();
+  if (g_stop_signal != 0 && args_.scripted()) {
+    // Not done: say so, and what stays (the movie so far is a whole file, the screenshot and
+    // frame log were not written), and end as the CLI does (128 + signal; issue 15).
+    std::fprintf(stderr, "dynamesh: stopped by signal %d before the scripted run was done%s%s\n",
+                 static_cast<int>(g_stop_signal), args_.record.empty() ? "" : "; ",
+                 args_.record.empty() ? "" : status_.c_str());
+    status = 128 + g_stop_signal;
+  }
   if (!args_.state_file.empty() && !save_settings())
     std::fprintf(stderr, "dynamesh: %s\n", status_.c_str());
   return status;

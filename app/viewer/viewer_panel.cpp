@@ -19,6 +19,8 @@ ImU32 to_imgui(const glm::vec3& c) {
 }
 
 const ImVec4 kErrorColor(kPanelErrorRgb[0], kPanelErrorRgb[1], kPanelErrorRgb[2], 1.0f);
+// A topology event of the shown step (not an error: cyan, not red).
+const ImVec4 kEventColor(0.45f, 0.85f, 1.0f, 1.0f);
 
 // Committed on Enter only: a half-typed number (0.0 on the way to 0.0005) must not reach the
 // adapter.
@@ -39,6 +41,26 @@ bool text_option(SimulationControls& c, const std::string& key) {
     it->second = buffer;
   }
   return true;
+}
+
+void note_widget(PanelActions& a, const PanelInfo& info, const char* label);
+
+// The mri scene's scan: a NIfTI file or a DICOM series folder, typed (committed on Enter) or
+// dropped on the window. Opening it is the app's (PanelActions::open_path): loaded on the
+// worker, and a file that cannot be read leaves the scene on screen as it was.
+void scan_path_field(const SimulationControls& c, PanelActions& a, const PanelInfo& info) {
+  const auto it = std::find_if(c.scene_text.begin(), c.scene_text.end(),
+                               [](const auto& kv) { return kv.first == "volume"; });
+  char buffer[1024] = {};
+  if (it != c.scene_text.end()) std::snprintf(buffer, sizeof buffer, "%s", it->second.c_str());
+  const bool entered = ImGui::InputText("volume", buffer, sizeof buffer, kOnEnter);
+  note_widget(a, info, "volume");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        ".nii / .nii.gz file or DICOM series folder; Enter opens it (or drop it "
+        "on the window); empty: Colin27");
+  if (entered) a.open_path = buffer;  // empty: the default scan
+  a.open_requested |= entered;
 }
 
 void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
@@ -86,11 +108,11 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     a.controls_changed |= formula_section(s, info);
     return;
   }
-  for (std::size_t i = 0; i < c.scene_text.size(); ++i)
+  for (std::size_t i = 0; i < c.scene_text.size(); ++i) {
+    if (c.scene == "mri" && c.scene_text[i].first == "volume") continue;  // the path field below
     a.controls_changed |= text_option(c, std::string(c.scene_text[i].first));
-  const bool has_volume = std::any_of(c.scene_text.begin(), c.scene_text.end(),
-                                      [](const auto& kv) { return kv.first == "volume"; });
-  if (c.scene == "mri" && !has_volume) a.controls_changed |= text_option(c, "volume");
+  }
+  if (c.scene == "mri") scan_path_field(c, a, info);
   if (!c.scene_parameters.empty() && ImGui::SmallButton("default parameters")) {
     c.scene_parameters.clear();
     a.controls_changed = true;
@@ -100,6 +122,12 @@ void scene_section(ViewerState& s, PanelActions& a, const PanelInfo& info) {
     ImGui::TextWrapped("%s", info.error.c_str());
     ImGui::PopStyleColor();
     ImGui::TextDisabled("(showing the last good mesh)");
+  }
+  if (!info.open_error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", info.open_error.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("(the previous scene stays)");
   }
 }
 
@@ -329,6 +357,17 @@ void statistics_section(const ViewerState& state, const PanelInfo& info) {
     std::snprintf(overlay, sizeof overlay, "%s %.1f ms", name, 1e3 * seconds);
     ImGui::ProgressBar(p.total > 0 ? static_cast<float>(seconds / p.total) : 0.0f,
                        ImVec2(-FLT_MIN, 0), overlay);
+  }
+  // Topology events (issue 16): a merge is just another frame, but the panel says it happened
+  // and how the mesh followed; this step's in colour, the run's earlier ones greyed.
+  if (info.history != nullptr && !info.history->topology_events().empty()) {
+    const std::vector<std::string> now = StatsHistory::topology_notes(s);
+    for (const std::string& note : info.history->topology_events()) {
+      if (std::find(now.begin(), now.end(), note) != now.end())
+        ImGui::TextColored(kEventColor, "topology: %s", note.c_str());
+      else
+        ImGui::TextDisabled("topology: %s", note.c_str());
+    }
   }
   if (info.history != nullptr && info.history->size() > 1) {
     const StatsHistory::Series& h = info.history->series();

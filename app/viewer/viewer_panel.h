@@ -22,6 +22,9 @@ struct PanelActions {
   bool fit = false, reset_camera = false;
   bool screenshot = false, toggle_recording = false;
   bool save_settings = false, reset_settings = false;
+  // The scan path field was committed (Enter): open this scan (empty: the scene's default).
+  bool open_requested = false;
+  std::string open_path;
   std::vector<WidgetRect> widgets;  // where the sliders are, when PanelInfo::report_widgets
 };
 
@@ -33,10 +36,11 @@ struct PanelInfo {
   TextOptions running_text;  // its text options: the formula of the mesh on screen
   const std::vector<FormulaExample>* examples = nullptr;  // the formula panel's library
   const StatsHistory* history = nullptr;
-  StepStats last;        // the adapter's last step
-  std::string error;     // the last request failed: shown in red
-  std::string status;    // last message (screenshot written...)
-  std::string settings;  // the settings file (empty: none)
+  StepStats last;          // the adapter's last step
+  std::string error;       // the last request failed: shown in red
+  std::string open_error;  // the last scan opened could not be loaded: shown in red
+  std::string status;      // last message (screenshot written...)
+  std::string settings;    // the settings file (empty: none)
   bool busy = false;
   int recorded_frames = -1;  // >= 0 while recording
   float fps = 0.0f;

@@ -116,7 +116,10 @@ bool decode(const std::string& t, SceneSettings& v) {
   SceneSettings d;
   if (!(std::istringstream(t) >> d.threshold >> d.epsilon >> d.density >> d.edge_length))
     return false;
-  if (!(d.threshold > 0 && d.epsilon >= 0 && d.epsilon < d.threshold && d.density > 0 &&
+  // As validate_state's rules for the controls they become (inf passed `> 0`).
+  const bool finite =
+      std::isfinite(d.threshold) && std::isfinite(d.density) && std::isfinite(d.edge_length);
+  if (!(finite && d.threshold > 0 && d.epsilon >= 0 && d.epsilon < d.threshold && d.density > 0 &&
         d.edge_length >= 0))
     return false;
   v = d;

@@ -32,7 +32,28 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
   out << "threshold " << controls.threshold << "\nepsilon " << controls.epsilon << "\ndensity "
       << controls.density << "\nk " << controls.k << "\nresults " << shown.results << "\nbusy "
       << (shown.busy ? 1 : 0) << '\n';
+  out << "frames " << shown.frames << '\n';
+  if (!shown.progress.empty()) out << "progress " << shown.progress << '\n';
+  if (!shown.scene.empty()) out << "scene " << shown.scene << '\n';
+  if (shown.scene_text != nullptr)
+    for (const auto& [key, value] : *shown.scene_text)
+      out << "scene_text " << key << ' ' << value << '\n';
+  for (const auto& [key, message] :
+       {std::pair{"error", &shown.error}, std::pair{"open_error", &shown.open_error}}) {
+    if (message->empty()) continue;
+    std::string one_line = *message;
+    std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+    out << key << ' ' << one_line << '\n';
+  }
   if (shown.mesh != nullptr) {
+    const auto& p = shown.mesh->positions;
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (std::size_t i = 0; i + 2 < p.size(); i += 3) {
+      lo = lo.cwiseMin(Vec3(p[i], p[i + 1], p[i + 2]));
+      hi = hi.cwiseMax(Vec3(p[i], p[i + 1], p[i + 2]));
+    }
+    out << "bounds " << lo.x() << ' ' << lo.y() << ' ' << lo.z() << ' ' << hi.x() << ' ' << hi.y()
+        << ' ' << hi.z() << '\n';
     out << "step " << shown.mesh->step << "\ntriangles " << shown.mesh->n_triangles()
         << "\nmean_aspect " << mean_aspect_ratio(*shown.mesh) << "\nsamples " << shown.samples
         << "\nmean_error " << shown.mean_error << '\n';

@@ -11,6 +11,12 @@
 //   probe X Y Z, probe_voxel I J K, probe_intensity V, probe_depth D, probe_region N NAME
 //                              the probed point (a click on the layer or in a slice) and
 //                              what the scan says there (volume_probe.h)
+//   frames N                   frames drawn so far (they go on while a scan loads)
+//   progress STAGE P%          while a scan loads: what the panel shows
+//   scene NAME, scene_text KEY VALUE   the scene on screen and its text options (volume)
+//   error MESSAGE              the last request failed (red, under the scene)
+//   open_error MESSAGE         the last scan opened could not be read (red, under the scene)
+//   bounds X0 Y0 Z0 X1 Y1 Z1   the mesh's bounding box
 //   widget slice_i|slice_j|slice_k X0 Y0 X1 Y1   the slice images normal to voxel axis i, j,
 //                              k (slice_panel.h): across the first other axis (voxel -1/2 at
 //                              X0, dims - 1/2 at X1), up the second (-1/2 at Y1)
@@ -39,6 +45,12 @@ struct ShownState {
   std::size_t samples = 0;             // the last step's
   double mean_error = 0.0;
   const VolumeProbe* probe = nullptr;  // null: nothing probed
+  std::uint64_t frames = 0;            // frames drawn so far
+  std::string progress;                // loading a scan: stage and percentage
+  std::string scene;                   // the scene on screen and its text options
+  const TextOptions* scene_text = nullptr;
+  std::string error;       // the last request failed: the red message under the scene
+  std::string open_error;  // the last scan opened could not be read: its red message
 };
 
 std::string widget_report(const std::vector<WidgetRect>& widgets,

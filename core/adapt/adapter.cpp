@@ -187,11 +187,31 @@ const StepStats& Adapter::step(double t) {
   Stopwatch clock;
   bool planned = false;
   starts_planned_ = false;
-  const int n = plan_substeps(from, t, planned);
+  int n = plan_substeps(from, t, planned);
   stats_.seconds.project = clock.lap();
   bool corrected = false;
-  for (int k = 1; k <= n; ++k)
-    corrected |= advance(k == n ? t : from + (t - from) * k / n, k == 1 && planned);
+  double start = from;
+  int done = 0;
+  bool replanned = false;
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t repairs = stats_.local_repairs;
+    const bool rebuilt = stats_.rebuilt;
+    corrected |= advance(k == n ? t : start + (t - start) * k / n, k == 1 && planned);
+    // A topology repair or rebuild within the step (issue 16) replaced the mesh the sub-steps
+    // were planned on, next to where the surface moves fastest (a new neck widens, new tips
+    // recede, both as the square root of the time since the event): the rest of the step is
+    // planned again on the new mesh (once: a step holds at most 2 * max_substeps sub-steps).
+    if (!replanned && k < n && (stats_.local_repairs != repairs || stats_.rebuilt != rebuilt)) {
+      replanned = true;
+      done += k;
+      start = surface_.time();
+      const double strain = stats_.motion_strain;
+      n = plan_substeps(start, t, planned);
+      stats_.substeps += done;  // those taken, and those planned now
+      stats_.motion_strain = std::max(strain, stats_.motion_strain);
+      k = 0;
+    }
+  }
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
   finish_stats();
@@ -278,6 +298,7 @@ void Adapter::rebuild_from_base() {
   // repairs of this step included.
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
+  stats_.repair_spacing = 0.0;
   mesh_ = surface_.base_mesh();
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);

@@ -1,4 +1,5 @@
 // The adapter's topology hooks (issue 16): kept apart from the per-step phases in adapter.cpp.
+#include <algorithm>
 #include <chrono>
 
 #include "core/adapt/adapter.h"
@@ -39,10 +40,13 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
   // The cut reaches two cells of the watching grid around the critical point (the mesh is
   // wrong within about one: the event happened since the last step), the patch is contoured
-  // at half a cell.
+  // at the seam's edge size, between half a cell and three quarters of one (local_repair.h;
+  // a whole cell left the narrow blobs' new neck faces so large that their sparse samples
+  // missed the error next to it: dense error 1.11 (T + eps) in the step after the merge).
   LocalRepairOptions o;
   o.radius = 2.0 * topology_->spacing();
   o.spacing = 0.5 * topology_->spacing();
+  o.max_spacing = 0.75 * topology_->spacing();
   std::size_t repaired = 0;
   for (const TopologyEvent& e : check.events) {
     if (e.kind == TopologyEventKind::kMismatch) return false;  // not located
@@ -53,6 +57,7 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
     }
     ++repaired;
     stats_.repair_faces_replaced += r.removed_faces;
+    stats_.repair_spacing = std::max(stats_.repair_spacing, r.spacing);
     adopt_repair(r.new_vertices);
   }
   if (repaired == 0) return false;

@@ -45,7 +45,7 @@ struct StepStats {
   // angle floor, vertex moves made, and what is left in the published frame.
   std::size_t folds_found = 0, slivers_found = 0, repair_moves = 0;
   std::size_t folds_left = 0, slivers_left = 0;
-  bool budget_hit = false;  // refinement stopped at AdaptOptions::max_triangles
+  bool budget_hit = false;         // refinement stopped at AdaptOptions::max_triangles
   bool sample_budget_hit = false;  // ... at AdaptOptions::max_samples
   bool time_budget_hit = false;    // ... at AdaptOptions::deadline
   // Topology (issue 16; surfaces that may change topology): events found from F during the
@@ -56,6 +56,7 @@ struct StepStats {
   std::vector<TopologyEvent> topology_events;
   std::size_t local_repairs = 0;
   std::size_t repair_faces_replaced = 0;  // faces the local repairs cut out
+  double repair_spacing = 0.0;  // the coarsest contour spacing of this step's repair patches
   std::vector<std::string> repair_refusals;  // why a local repair was not done
   bool rebuilt = false;
   std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild

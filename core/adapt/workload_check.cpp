@@ -32,11 +32,13 @@ std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b, const Wo
   if (b.edge_length > 0) {
     const double needed =
         b.edge_length_share * w.area / (std::sqrt(3.0) / 4.0 * b.edge_length * b.edge_length);
+    const std::string& name =
+        b.edge_length_from_scene ? words.scene_edge_length : words.edge_length;
     if (needed > b.hopeless * b.max_triangles)
-      return "edges of at most " + words.edge_length + " " + short_number(b.edge_length) +
+      return "edges of at most " + name + " " + short_number(b.edge_length) +
              " need at least about " + short_number(needed) + " triangles over area " +
              short_number(b.edge_length_share * w.area) + ", more than " + words.max_triangles +
-             " " + whole(b.max_triangles) + "; raise " + words.edge_length + " or the budget";
+             " " + whole(b.max_triangles) + "; raise " + name + " or the budget";
   }
   if (w.samples > b.max_samples)
     return "the surface needs about " + short_number(w.samples) + " samples (" + words.density +
@@ -47,6 +49,21 @@ std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b, const Wo
 }
 
 }  // namespace
+
+void set_edge_length_demand(WorkloadBudget& budget, const std::string& scene,
+                            const Surface& surface, double edge_length) {
+  budget.edge_length = edge_length > 0 ? edge_length : 0.0;
+  budget.edge_length_share = 1.0;
+  budget.edge_length_from_scene = false;
+  if (scene != "sphere") return;
+  budget.edge_length_share = 0.5;  // its x >= 0 half
+  if (edge_length > 0) return;
+  for (const SurfaceParameter& p : surface.parameters())
+    if (p.name == "L") {
+      budget.edge_length = p.value;
+      budget.edge_length_from_scene = true;
+    }
+}
 
 std::string workload_refusal(Surface& surface, const WorkloadBudget& budget, double t_first,
                              double t_last, const WorkloadWords& words, int checks, bool problems) {

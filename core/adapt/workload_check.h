@@ -24,6 +24,7 @@ struct WorkloadBudget {
   // in-range L = 0.001 on the sphere ran for ever towards 10^9 triangles.
   double edge_length = 0.0;
   double edge_length_share = 1.0;
+  bool edge_length_from_scene = false;  // the scene's parameter L, not the user's edge length
 };
 
 // How the budgets are called where the message is read (the CLI's option names, the
@@ -34,7 +35,14 @@ struct WorkloadWords {
   std::string max_triangles = "--max-triangles";
   std::string max_samples = "--max-samples";
   std::string edge_length = "--edge-length";
+  std::string scene_edge_length = "--param L";
 };
+
+// Sets the budget's edge-length demand as default_criteria (criteria.h) adapts `scene`: the
+// sphere's x >= 0 half at `edge_length` if positive, else at its parameter L; any other scene
+// everywhere at a positive `edge_length`. One rule for dynamesh-cli and the viewer.
+void set_edge_length_demand(WorkloadBudget& budget, const std::string& scene,
+                            const Surface& surface, double edge_length);
 
 // Estimates the workload at `checks` evenly spaced times of [t_first, t_last] (one when they
 // are equal) and returns why the surface is refused ("at t = 0.5: the surface needs ..."), or

@@ -104,26 +104,35 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   // Mesh-only screen: a face turned against its corners' area-weighted mesh normals (more
   // than 60 degrees; a smooth adapted mesh bends far less between neighbours), or below the
   // angle floor. Only those evaluate the surface.
-  const std::size_t nv = mesh.vertex_capacity();
-  std::vector<Vec3> vertex_normal(nv, Vec3::Zero());
-  for (Face f : mesh.live_faces()) {
-    const Vec3 n = face_normal(mesh, f);
-    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += n;
-  }
-  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
+  // Each face's normal once (in parallel), summed into its corners in face order (the sums,
+  // hence the verdicts, are those of a serial pass), each vertex normal's length once.
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
+  const auto nv = static_cast<std::int64_t>(mesh.vertex_capacity());
+  std::vector<Vec3> normal(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (mesh.is_alive(f)) normal[static_cast<std::size_t>(i)] = face_normal(mesh, f);
+  }
+  std::vector<Vec3> vertex_normal(static_cast<std::size_t>(nv), Vec3::Zero());
+  for (Face f : mesh.live_faces())
+    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += normal[f.idx];
+  std::vector<double> vertex_norm(static_cast<std::size_t>(nv));
+#pragma omp parallel for schedule(static) if (nv > kParallelMin)
+  for (std::int64_t i = 0; i < nv; ++i)
+    vertex_norm[static_cast<std::size_t>(i)] = vertex_normal[static_cast<std::size_t>(i)].norm();
+  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
   std::vector<std::uint8_t> kind(static_cast<std::size_t>(n), 0);  // 1 folded, 2 sliver
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
-    const Vec3 fn = face_normal(mesh, f);
+    const Vec3& fn = normal[static_cast<std::size_t>(i)];
+    const double half_norm = 0.5 * fn.norm();
     const auto v = mesh.vertices(f);
     bool suspect = !(fn.squaredNorm() > 0);
-    for (Vertex w : v) {
-      const Vec3& m = vertex_normal[w.idx];
-      suspect = suspect || fn.dot(m) <= 0.5 * fn.norm() * m.norm();
-    }
+    for (Vertex w : v)
+      suspect = suspect || fn.dot(vertex_normal[w.idx]) <= half_norm * vertex_norm[w.idx];
     auto& k = kind[static_cast<std::size_t>(i)];
     if (suspect && folded_against_surface(mesh, surface, f))
       k = 1;

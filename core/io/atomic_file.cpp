@@ -151,8 +151,14 @@ void remove_partial_files_on_signal() {
   struct sigaction action {};
   action.sa_handler = remove_partials_and_die;
   sigemptyset(&action.sa_mask);
-  ::sigaction(SIGINT, &action, nullptr);
-  ::sigaction(SIGTERM, &action, nullptr);
+  // SIGHUP (the terminal closed) and SIGPIPE (stdout's reader went away: `... | head`) end
+  // the process too, and left *.partial files behind (issue 15, session 4).
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    struct sigaction current {};
+    ::sigaction(signal, nullptr, &current);
+    // What the parent chose to ignore stays ignored (nohup, a background job's SIGINT).
+    if (current.sa_handler != SIG_IGN) ::sigaction(signal, &action, nullptr);
+  }
 }
 
 }  // namespace dynamesh

@@ -42,8 +42,9 @@ class AtomicFile {
 // paths that are or lead (through symbolic links) into /dev or /proc (/dev/stdout).
 bool is_special_output(const std::string& path);
 
-// Installs SIGINT and SIGTERM handlers that remove every registered partial file, then end
-// the process as the signal would have (status 128 + signal). Call once, early, from main.
+// Installs SIGINT, SIGTERM, SIGHUP and SIGPIPE handlers that remove every registered partial
+// file, then end the process as the signal would have (status 128 + signal); a signal the
+// parent set to be ignored stays ignored. Call once, early, from main.
 void remove_partial_files_on_signal();
 
 }  // namespace dynamesh

@@ -7,6 +7,8 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <unordered_set>
 
 #include "core/surface/expression/expr_scene.h"
 #include "core/surface/scenes/blobs_scene.h"
@@ -69,14 +71,15 @@ std::string valid_names(const std::vector<SceneRegistration>& entries) {
   return list;
 }
 
-// The last value given for each key wins, as on a command line.
+// The last value given for each key wins, as on a command line; the keys keep the order of
+// their last occurrence. Linear: a saved state with 200,000 `param.` lines took minutes with
+// a pairwise comparison (issue 15).
 ParameterOverrides last_value_per_key(const ParameterOverrides& overrides) {
   ParameterOverrides unique;
-  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
-    bool seen = false;
-    for (const auto& u : unique) seen = seen || u.first == it->first;
-    if (!seen) unique.insert(unique.begin(), *it);
-  }
+  std::unordered_set<std::string_view> seen;
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it)
+    if (seen.insert(it->first).second) unique.push_back(*it);
+  std::reverse(unique.begin(), unique.end());
   return unique;
 }
 

@@ -140,6 +140,25 @@ std::ptrdiff_t odd_loops(const Mesh48& mesh, const std::vector<char>& cut,
   return odd;
 }
 
+// Where the border passes twice through one vertex (the cut touches itself there, as it can
+// around coarse faces next to the event) the loops are not simple: the vertex's whole fan is
+// cut too, then the cut is closed and levelled again. Returns whether anything was pinched.
+bool unpinch(const Mesh48& mesh, std::vector<char>& cut) {
+  std::unordered_map<std::uint32_t, int> starts;
+  for_each_border_halfedge(mesh, cut,
+                           [&](Face, std::uint32_t from, std::uint32_t) { ++starts[from]; });
+  bool pinched = false;
+  for (const auto& [v, count] : starts) {
+    if (count < 2) continue;
+    pinched = true;
+    mesh.for_each_corner_around(Vertex(v), [&](Corner c) { cut[c.face.idx] = 1; });
+  }
+  if (!pinched) return false;
+  close_cut(mesh, cut);
+  level_border(mesh, cut);
+  return true;
+}
+
 // Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
                                                                const std::vector<char>& cut) {
@@ -350,9 +369,36 @@ bool unfold_by_flips(const ImplicitSurface& surface, const std::vector<Vec3>& p,
   return ok;
 }
 
-// One attempt at cut radius r, patch spacing h.
+// The patch's contour spacing, from the seam: its faces at the patch's depth D are as fine as
+// the queues made them for the threshold T there, and the patch's new faces (base faces at D,
+// which welds cannot take coarser) should be no finer, or the repaired region stays
+// over-refined for the rest of the run. Marching tetrahedra's triangles on a grid of spacing
+// h have edges of about 0.55 h (measured on the blobs' contoured base: mean 0.082 at
+// h = 0.15), so h = seam edge / 0.55; the split queue refines what is too coarse for T. At
+// least `finest` (what the caller asks), at most `coarsest` (the watching grid's cell: a
+// coarser contour could miss what the watching grid saw).
+double patch_spacing(const Mesh48& mesh, const std::vector<Loop>& loops,
+                     const std::unordered_map<std::uint64_t, int>& seam_depth, int depth,
+                     double finest, double coarsest) {
+  constexpr double kEdgePerSpacing = 0.55;
+  double length = 0;
+  std::size_t count = 0;
+  for (const Loop& loop : loops)
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+      const auto it = seam_depth.find(edge_key(a, b));
+      if (it == seam_depth.end() || it->second != depth) continue;
+      length += (mesh.position(Vertex(a)) - mesh.position(Vertex(b))).norm();
+      ++count;
+    }
+  if (count == 0) return finest;
+  return std::clamp(length / static_cast<double>(count) / kEdgePerSpacing, finest,
+                    std::max(finest, coarsest));
+}
+
+// One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam).
 LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
-                          double r, double h) {
+                          double r, double h, double max_h) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -369,6 +415,8 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   close_cut(mesh, cut);
   level_border(mesh, cut);
   std::vector<Loop> mesh_loops = loops_of(border_of(mesh, cut));
+  for (int round = 0; round < 8 && mesh_loops.empty() && unpinch(mesh, cut); ++round)
+    mesh_loops = loops_of(border_of(mesh, cut));
   if (mesh_loops.empty()) return refuse("nothing to cut near the event, or its border is pinched");
   const auto count_odd = [&](const std::vector<char>& c, const std::vector<Loop>& loops) {
     return odd_loops(mesh, c, loops);
@@ -426,10 +474,10 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   if (removed.size() == mesh.n_faces()) return refuse("the cut takes the whole mesh");
   const std::unordered_map<std::uint64_t, int> seam_depth = border_depths(mesh, cut);
   const int depth = patch_depth(seam_depth);
+  h = patch_spacing(mesh, mesh_loops, seam_depth, depth, h, max_h);
 
-  // 2. The patch: F's contour near the event, a little inside the cut.
-  // The patch: F's contour within r - h / 2 of the event, so that a strip about an edge wide
-  // separates it from the cut's border (which lies beyond r).
+  // 2. The patch: F's contour within r - h / 2 of the event, so that a strip about an edge
+  // wide separates it from the cut's border (which lies beyond r).
   double reach = 0;
   for (const Face f : removed)
     for (const Vertex v : mesh.vertices(f))
@@ -528,6 +576,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   result.repaired = true;
   result.removed_faces = removed.size();
   result.added_faces = ordered.size();
+  result.spacing = h;
   return result;
 }
 
@@ -544,12 +593,22 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // border and the patch's loops both change): a few cuts, the smallest first.
   const double h = options.spacing;
   std::string why;
+  // The patch as coarse as the seam first (local_repair.h), then finer by steps down to the
+  // finest spacing: a coarser contour's triangles can be paired less often (a triangulated
+  // disk need not have a perfect matching), and a finer one still re-adapts better than a
+  // global re-base.
+  std::vector<double> coarsest;
+  for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
+    coarsest.push_back(most);
+  coarsest.push_back(h);
   for (const double grow : {1.0, 1.25, 1.5})
-    for (const double finer : {1.0, 0.75}) {
-      last = attempt(mesh, surface, centre, grow * options.radius, finer * h);
-      if (last.repaired) return last;
-      why += (why.empty() ? "" : "; ") + last.why_not;
-    }
+    for (const double finer : {1.0, 0.75})
+      for (const double most : coarsest) {
+        if (finer < 1.0 && most > h) continue;  // the finer grid only at the finest spacing
+        last = attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most);
+        if (last.repaired) return last;
+        why += (why.empty() ? "" : "; ") + last.why_not;
+      }
   last.why_not = why;
   return last;
 }

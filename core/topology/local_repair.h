@@ -31,7 +31,11 @@ namespace dynamesh {
 
 struct LocalRepairOptions {
   double radius = 0.0;   // faces with a vertex this close to the event are cut out
-  double spacing = 0.0;  // of the local contour grid
+  double spacing = 0.0;  // of the local contour grid: the finest
+  // The coarsest: the contour's spacing follows the seam's edges (as fine as the queues made
+  // them for T there) between `spacing` and this, so the new faces are no finer than the
+  // faces around them and the queues re-adapt the region both ways.
+  double max_spacing = 0.0;
 };
 
 struct LocalRepairResult {
@@ -39,6 +43,7 @@ struct LocalRepairResult {
   std::string why_not;  // when not repaired
   std::size_t removed_faces = 0;
   std::size_t added_faces = 0;
+  double spacing = 0.0;  // the patch's contour spacing
   std::vector<Vertex> new_vertices;
 };
 

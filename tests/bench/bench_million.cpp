@@ -4,7 +4,6 @@
 // Reported: the median step's wall-clock and process CPU time (the CPU time is the work,
 // what a shared machine's other load does not inflate) and each phase's median.
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -12,15 +11,10 @@
 
 #include "core/adapt/adapter.h"
 #include "core/surface/scene_registry.h"
+#include "process_cpu_time.h"
 
 namespace dynamesh {
 namespace {
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

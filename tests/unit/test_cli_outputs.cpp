@@ -130,39 +130,6 @@ TEST(CliOutputs, AFormulaThatTurnsBadLeavesNoFileBehind) {
       << files_in(dir).size() << " files, e.g. " << files_in(dir).front();
 }
 
-TEST(CliOutputs, SigtermLeavesNoPartialFile) {
-  const fs::path dir = test::cli_scratch("sigterm");
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path frames = dir / "frames", csv = dir / "s.csv";
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    ::freopen("/dev/null", "w", stdout);
-    ::freopen("/dev/null", "w", stderr);
-    ::execl(test::cli_path().c_str(), "dynamesh-cli", "run", "--scene", "sinc", "--threshold",
-            "0.001", "--steps", "400", "--render", frames.c_str(), "--width", "200", "--height",
-            "150", "--stats", csv.c_str(), nullptr);
-    ::_exit(127);
-  }
-  // Interrupted once it has written a frame or two, in the middle of the run.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (files_in(frames).size() < 2 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_GE(files_in(frames).size(), 1u);
-  ::kill(child, SIGTERM);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
-  // The CSV never appears (it is complete only at the end); no temporary file stays; the
-  // frames already written are whole PNGs.
-  EXPECT_FALSE(fs::exists(csv));
-  for (const fs::path& f : files_in(dir)) {
-    EXPECT_EQ(f.extension(), ".png") << f;
-    EXPECT_EQ(test::slurp_file(f).substr(0, 4), "\x89PNG") << f;
-  }
-}
-
 TEST(CliOutputs, ExportWritesAParaViewCollection) {
   const fs::path dir = test::cli_scratch("pvd") / "meshes";
   fs::remove_all(dir);

@@ -6,8 +6,8 @@
 // - The `closing` parameter: a smaller closing keeps more of the sulci, so the layer of
 //   Colin27 with closing=2 has more area and encloses less than with the default 5 mm
 //   (T = 1 mm, to keep the test short).
-//   (closing=0 is accepted but its layer runs into the triangle budget at T = 0.5 mm:
-//   /work/notes/issue-14-core.md.)
+//   A closing below 2 mm (0 included), whose layer self-intersects or runs into the
+//   triangle budget, is refused in one line before the volume is loaded.
 // - The memory and time budgets hold while the volume is preprocessed.
 #include <gtest/gtest.h>
 
@@ -137,6 +137,26 @@ TEST(MriInputs, SmallerClosingKeepsMoreOfTheSulci) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("closing"), std::string::npos) << bad.err;
   EXPECT_EQ(lines(bad.err), 1u) << bad.err;
+}
+
+// A closing below 2 mm leaves slits the refinement cannot follow (kMinClosingMm: 1 mm gave a
+// self-intersecting layer, 0.5 mm and 0 ran into the triangle budget): such a value exits 2
+// with one line giving the range and why, before the volume is loaded (within seconds).
+TEST(MriInputs, ClosingBelowTwoMillimetresIsRefusedBeforeLoading) {
+  for (const std::string value : {"0", "1", "1.99"}) {
+    const auto start = std::chrono::steady_clock::now();
+    const test::CliRun bad =
+        test::run_cli({"--scene", "mri", "--param", "closing=" + value, "--steps", "0", "--quiet"});
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(bad.status, 2) << value;
+    EXPECT_NE(bad.err.find("closing = " + value + " is outside its range [2, 20]"),
+              std::string::npos)
+        << bad.err;
+    EXPECT_NE(bad.err.find("refinement cannot follow"), std::string::npos) << bad.err;
+    EXPECT_EQ(lines(bad.err), 1u) << bad.err;
+    EXPECT_LT(elapsed, 5.0) << value << ": the volume was loaded before refusing";
+  }
 }
 
 // --max-memory and --max-seconds bound the preprocessing: refused in one line, before the

@@ -7,6 +7,10 @@
 //   SegmentationOptions::closing_reference_ml) and a 35-degree oblique sform at 1.1 mm
 //   (which refined without end before the cuberille and opening fixes); the other variants
 //   of the issue are measured in /work/notes/issue-14-core.md.
+// - Header flips (a negative sform axis, negative pixdims under an sform, a qform-only
+//   header with qfac -1) over voxels stored in the matching reversed order give the same
+//   brain in the same place; anisotropic 1 x 1 x 3 mm voxels give the layer of the brain
+//   stretched 3x along z (T = 1 mm in these two tests, to keep them short).
 // - A head with its skull (ch2) gives the skull-stripped brain's (ch2bet) layer through the
 //   built-in brain extraction.
 // - A scan that is not a brain fails fast: a random volume and a head whose brain was
@@ -84,22 +88,26 @@ struct Layer {
   double area = 0.0, volume = 0.0;
 };
 
-// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass.
-Layer measure_ply(const test::PlyData& ply) {
+// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass; with
+// `stretch`, of that mesh scaled by it along the world's axes.
+Layer measure_ply(const test::PlyData& ply, const Vec3& stretch = Vec3::Ones()) {
   Layer layer;
   for (const auto& f : ply.faces) {
     Vec3 p[3];
     for (int i = 0; i < 3; ++i)
-      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
+      p[i] = stretch.cwiseProduct(
+          Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]));
     layer.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     layer.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
   }
   return layer;
 }
 
-// The layer at depth 0 of `volume` (plus `extra` options), judged closed and embedded.
+// The layer at depth 0 of `volume` (plus `extra` options), judged closed and embedded;
+// `threshold` is the T the run uses (the scene's 0.5 mm unless `extra` sets another).
 Layer layer_of(const std::filesystem::path& volume, const std::string& name,
-               const test::Args& extra = {}, double* preparation_seconds = nullptr) {
+               const test::Args& extra = {}, double* preparation_seconds = nullptr,
+               double threshold = 0.5) {
   using test::operator+;
   const auto dir = test::cli_scratch("mri_voxel_sizes");
   const std::string mesh = (dir / (name + ".ply")).string();
@@ -110,30 +118,55 @@ Layer layer_of(const std::filesystem::path& volume, const std::string& name,
   EXPECT_EQ(run.status, 0) << name << ": " << run.err;
   if (run.status != 0) return {};
   EXPECT_EQ(run.json["budget_hit"], false) << name << ": refinement ran away";
-  EXPECT_LE(run["max_sample_error"], 0.5 * 1.25 * 1.1) << name;  // T + eps, 10% sampling slack
+  EXPECT_LE(run["max_sample_error"], threshold * 1.25 * 1.1) << name;  // T + eps, 10% slack
   if (preparation_seconds) *preparation_seconds = run["preparation_seconds"];
   const test::MeshValidity v = test::check_mesh_validity_of_file(mesh);
   EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
   return measure_ply(test::read_ply(mesh));
 }
 
-TEST(MriVoxelSizes, Colin27AtOtherVoxelSizesGivesTheSameLayerScaled) {
-  if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
-  const auto dir = test::scratch_dir("mri_voxel_sizes_in");
-  const Layer reference = layer_of(kBrain, "ch2bet");
+struct VoxelVariant {
+  Vec3 spacing;
+  double degrees;
+};
+
+// Each of the issue's voxel sizes: ch2bet's voxels rescaled to `spacing` (and turned by
+// `degrees`), judged closed and embedded (layer_of), with an area within 10% of the 1 mm
+// layer stretched by the same spacing along the scan's axes (ch2bet's sform is the
+// identity, so its axes are the world's; a turn does not change area). For isotropic
+// voxels that is the 1 mm area times the square of the voxel-size ratio.
+void expect_layers_scaled(const std::vector<VoxelVariant>& variants, const std::string& tag) {
+  const auto dir = test::scratch_dir("mri_voxel_sizes_" + tag);
+  const Layer reference = layer_of(kBrain, "ch2bet_" + tag);
   ASSERT_GT(reference.area, 0.0);
-  struct Variant {
-    Vec3 spacing;
-    double degrees;
-  };
-  for (const Variant& v : {Variant{Vec3::Constant(2.0), 0.0}, Variant{Vec3::Constant(1.1), 35.0}}) {
-    const std::string name =
-        "voxels_" + std::to_string(v.spacing[0]) + "_turned_" + std::to_string(int(v.degrees));
+  const test::PlyData mesh =
+      test::read_ply((test::cli_scratch("mri_voxel_sizes") / ("ch2bet_" + tag + ".ply")).string());
+  for (const VoxelVariant& v : variants) {
+    const double expected = measure_ply(mesh, v.spacing).area;
+    const std::string name = "voxels_" + std::to_string(v.spacing[0]) + "x" +
+                             std::to_string(v.spacing[2]) + "_turned_" +
+                             std::to_string(int(v.degrees));
     const Layer layer = layer_of(rescaled_brain(dir, v.spacing, v.degrees), name);
-    const double expected = reference.area * v.spacing[0] * v.spacing[0];
     EXPECT_NEAR(layer.area / expected, 1.0, 0.10) << name << ": area " << layer.area;
-    RecordProperty(name + "_area_ratio", std::to_string(layer.area / expected));
+    ::testing::Test::RecordProperty(name + "_area_ratio", std::to_string(layer.area / expected));
   }
+}
+
+// Split in two so that CTest runs the halves side by side.
+TEST(MriVoxelSizes, Colin27AtFinerVoxelsGivesTheSameLayerScaled) {
+  if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
+  expect_layers_scaled({{Vec3::Constant(0.8), 0.0},
+                        {Vec3::Constant(0.95), 0.0},
+                        {Vec3::Constant(1.05), 0.0},
+                        {Vec3(1.0, 1.0, 1.2), 0.0}},
+                       "finer");
+}
+
+TEST(MriVoxelSizes, Colin27AtCoarserOrTurnedVoxelsGivesTheSameLayerScaled) {
+  if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
+  expect_layers_scaled(
+      {{Vec3::Constant(1.1), 35.0}, {Vec3::Constant(1.5), 0.0}, {Vec3::Constant(2.0), 0.0}},
+      "coarser");
 }
 
 // ch2bet with its sform's linear part replaced by `linear` (pixdim left as it was: the sform
@@ -174,6 +207,138 @@ TEST(MriVoxelSizes, ShearedSformWorksAndScaledOneIsRefusedFast) {
   EXPECT_NE(run.err.find("would span fewer than"), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   EXPECT_LT(elapsed, 10.0);
+}
+
+// Area-weighted centroid of a mesh's triangles (world mm).
+Vec3 centroid_of(const test::PlyData& ply) {
+  const std::vector<Vec3> p = [&] {
+    std::vector<Vec3> q;
+    for (const auto& v : ply.vertices) q.emplace_back(v[0], v[1], v[2]);
+    return q;
+  }();
+  Vec3 sum = Vec3::Zero();
+  double area = 0.0;
+  for (const auto& f : ply.faces) {
+    const double a = 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    sum += a * (p[f[0]] + p[f[1]] + p[f[2]]) / 3.0;
+    area += a;
+  }
+  return sum / area;
+}
+
+// ch2bet's voxels stored in the reverse order along index axis `axis` (0, 1, 2).
+Nifti flipped_data(Nifti n, int axis) {
+  const std::size_t bytes = std::size_t(n.header.bitpix / 8);
+  const std::size_t d[3] = {std::size_t(n.header.dim[1]), std::size_t(n.header.dim[2]),
+                            std::size_t(n.header.dim[3])};
+  std::vector<char> out(n.data.size());
+  for (std::size_t k = 0; k < d[2]; ++k)
+    for (std::size_t j = 0; j < d[1]; ++j)
+      for (std::size_t i = 0; i < d[0]; ++i) {
+        std::size_t ijk[3] = {i, j, k};
+        ijk[axis] = d[axis] - 1 - ijk[axis];
+        const std::size_t from = ((k * d[1] + j) * d[0] + i) * bytes;
+        const std::size_t to = ((ijk[2] * d[1] + ijk[1]) * d[0] + ijk[0]) * bytes;
+        std::copy_n(n.data.data() + from, bytes, out.data() + to);
+      }
+  n.data = std::move(out);
+  return n;
+}
+
+// The mri layer through the CLI at T = 1 mm (quicker; the same T for every variant compared),
+// with its mesh read back.
+struct LayerMesh {
+  Layer layer;
+  test::PlyData ply;
+};
+
+LayerMesh coarse_layer_of(const std::filesystem::path& volume, const std::string& name) {
+  LayerMesh m;
+  m.layer = layer_of(volume, name, {"--threshold", "1"}, nullptr, 1.0);
+  m.ply = test::read_ply((test::cli_scratch("mri_voxel_sizes") / (name + ".ply")).string());
+  return m;
+}
+
+// Header flips that place the same brain in the same world spot through reversed voxel
+// order: a negative sform axis (data reversed along j, the front-back axis, where Colin27
+// is not symmetric), the same with negative pixdims (the sform governs; NIfTI takes no
+// sign from pixdim[1..3]), and a qform-only header (sform_code 0) whose qfac = pixdim[0] =
+// -1 reverses k (data reversed along k). Each gives a closed, embedded layer with the 1 mm
+// layer's area and volume (within 10%: the voxel size is unchanged) at the same place
+// (centroid within 1 mm; ignoring a flip would move it by centimetres).
+TEST(MriVoxelSizes, HeaderFlipsGiveTheSameBrainInTheSamePlace) {
+  if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
+  const auto dir = test::scratch_dir("mri_flips");
+  const LayerMesh reference = coarse_layer_of(kBrain, "flips_reference");
+  ASSERT_GT(reference.layer.area, 0.0);
+  const Vec3 centre = centroid_of(reference.ply);
+  const Nifti original = read_whole(kBrain);
+  const Mat3 linear = Mat3::Identity();  // ch2bet: sform diag(1, 1, 1), offset below
+  const Vec3 offset(original.header.srow_x[3], original.header.srow_y[3],
+                    original.header.srow_z[3]);
+  ASSERT_EQ(original.header.sform_code, 4);
+  ASSERT_EQ(original.header.srow_x[0], 1.0f);
+
+  std::vector<std::pair<std::string, std::filesystem::path>> variants;
+  {  // sform with a negative j axis; the first voxel is the old last one along j
+    Nifti n = flipped_data(original, 1);
+    Mat3 l = linear;
+    l(1, 1) = -1.0;
+    test::set_sform(n.header, l, offset + Vec3(0.0, n.header.dim[2] - 1.0, 0.0));
+    n.header.qform_code = 0;
+    n.header.vox_offset = 352.0f;
+    test::write_nifti(dir / "sform_flip_j.nii", n.header, n.data.data(), n.data.size());
+    variants.emplace_back("sform_flip_j", dir / "sform_flip_j.nii");
+    for (int i = 1; i <= 3; ++i) n.header.pixdim[i] = -1.0f;
+    test::write_nifti(dir / "sform_flip_j_negative_pixdim.nii", n.header, n.data.data(),
+                      n.data.size());
+    variants.emplace_back("sform_flip_j_negative_pixdim", dir / "sform_flip_j_negative_pixdim.nii");
+  }
+  {  // qform only: identity quaternion, qfac -1 reverses k
+    Nifti n = flipped_data(original, 2);
+    n.header.sform_code = 0;
+    n.header.qform_code = 1;
+    n.header.quatern_b = n.header.quatern_c = n.header.quatern_d = 0.0f;
+    n.header.pixdim[0] = -1.0f;
+    n.header.qoffset_x = static_cast<float>(offset[0]);
+    n.header.qoffset_y = static_cast<float>(offset[1]);
+    n.header.qoffset_z = static_cast<float>(offset[2] + (n.header.dim[3] - 1.0));
+    n.header.vox_offset = 352.0f;
+    test::write_nifti(dir / "qform_flip_k.nii", n.header, n.data.data(), n.data.size());
+    variants.emplace_back("qform_flip_k", dir / "qform_flip_k.nii");
+  }
+  for (const auto& [name, path] : variants) {
+    const LayerMesh m = coarse_layer_of(path, name);
+    EXPECT_NEAR(m.layer.area / reference.layer.area, 1.0, 0.10) << name << ": " << m.layer.area;
+    EXPECT_NEAR(m.layer.volume / reference.layer.volume, 1.0, 0.10) << name;
+    const Vec3 c = centroid_of(m.ply);
+    EXPECT_LT((c - centre).norm(), 1.0)
+        << name << ": centroid " << c.transpose() << " vs " << centre.transpose();
+    ::testing::Test::RecordProperty(name + "_area_ratio",
+                                    std::to_string(m.layer.area / reference.layer.area));
+  }
+}
+
+// Anisotropic voxels: ch2bet with its sform's z column tripled (1 x 1 x 3 mm voxels, a brain
+// stretched 3x along z). The layer is closed and embedded; its enclosed volume is 3x the
+// 1 mm layer's and its area that of the 1 mm layer stretched 3x along z (computed from that
+// mesh), both within 10%. (The closing, sized to the brain, and the blurs are isotropic in
+// mm, so the stretched brain's layer is not exactly the stretched layer.)
+TEST(MriVoxelSizes, AnisotropicVoxelsGiveTheStretchedLayer) {
+  if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
+  const auto dir = test::scratch_dir("mri_anisotropic");
+  const LayerMesh reference = coarse_layer_of(kBrain, "anisotropic_reference");
+  ASSERT_GT(reference.layer.area, 0.0);
+  const double stretched_area = measure_ply(reference.ply, Vec3(1.0, 1.0, 3.0)).area;
+  const LayerMesh z3 = coarse_layer_of(
+      resformed_brain(dir, "z3", Vec3(1.0, 1.0, 3.0).asDiagonal().toDenseMatrix()), "z3");
+  EXPECT_NEAR(z3.layer.volume / (3.0 * reference.layer.volume), 1.0, 0.10) << z3.layer.volume;
+  EXPECT_NEAR(z3.layer.area / stretched_area, 1.0, 0.10)
+      << z3.layer.area << " vs stretched " << stretched_area;
+  RecordProperty("volume_ratio", std::to_string(z3.layer.volume / reference.layer.volume));
+  RecordProperty("area_over_stretched", std::to_string(z3.layer.area / stretched_area));
+  RecordProperty("area_over_iso_scaled",
+                 std::to_string(z3.layer.area / (reference.layer.area * std::cbrt(9.0))));
 }
 
 // Exit status 2, within `seconds`, one line on stderr naming --mask, and no output file.
@@ -251,15 +416,27 @@ double mean_distance(const test::PlyData& from, const test::PlyData& to) {
 
 // Built-in brain extraction (brain_extraction.h): the head with its skull (ch2) gives the
 // layer 3 mm deep of the skull-stripped brain (ch2bet): enclosed volume and area within 10%
-// and a mean symmetric surface distance of at most 2 mm; its preprocessing (the JSON's
-// preparation_seconds) stays under 30 s.
+// and a mean symmetric surface distance of at most 2 mm. The issue's "preprocessing under
+// 30 s" is a speed goal, measured by BM_MriPrepWhole/head (tests/bench); here the head's
+// whole run is held to 30 s of CPU time (all threads; 6-7 s measured), which a loaded
+// machine does not inflate the way it inflates the wall clock (preparation_seconds: 35 s
+// wall at load 25 for ~3.4 s of CPU).
+double children_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 TEST(MriVoxelSizes, HeadWithSkullGivesTheStrippedBrainsLayer) {
   if (!std::filesystem::exists(kHead) || !std::filesystem::exists(kBrain))
     GTEST_SKIP() << "mricron-data not installed";
   const test::Args deep{"--param", "depth_max=3", "--t0", "1"};
   double preparation = 0.0;
   const Layer brain = layer_of(kBrain, "ch2bet_3mm", deep);
+  const double cpu_before = children_cpu_seconds();
   const Layer head = layer_of(kHead, "ch2_3mm", deep, &preparation);
+  const double cpu = children_cpu_seconds() - cpu_before;
   ASSERT_GT(brain.area, 0.0);
   ASSERT_GT(head.area, 0.0);
   EXPECT_NEAR(head.area / brain.area, 1.0, 0.10) << head.area << " vs " << brain.area;
@@ -270,7 +447,8 @@ TEST(MriVoxelSizes, HeadWithSkullGivesTheStrippedBrainsLayer) {
       test::read_ply((test::cli_scratch("mri_voxel_sizes") / "ch2_3mm.ply").string());
   const double symmetric = 0.5 * (mean_distance(a, b) + mean_distance(b, a));
   EXPECT_LE(symmetric, 2.0) << "mm";
-  EXPECT_LT(preparation, 30.0) << "s";
+  EXPECT_LT(cpu, 30.0) << "s of CPU for the whole run";
+  RecordProperty("run_cpu_seconds", std::to_string(cpu));
   RecordProperty("symmetric_surface_distance_mm", std::to_string(symmetric));
   RecordProperty("area_ratio", std::to_string(head.area / brain.area));
   RecordProperty("volume_ratio", std::to_string(head.volume / brain.volume));

@@ -13,6 +13,7 @@
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
 #include "scene_run.h"
+#include "tests/support/error_only_adapter.h"
 
 namespace dynamesh {
 namespace {
@@ -85,10 +86,7 @@ test::SceneRun start_with_error_criterion(const std::string& scene, const AdaptO
   test::SceneRun run;
   run.surface = make_scene(scene);
   run.surface->set_time(0.0);
-  CriterionList criteria;
-  criteria.push_back(std::make_unique<GeometricErrorCriterion>(o.threshold, o.epsilon));
-  run.adapter = std::make_unique<Adapter>(*run.surface, o, std::move(criteria));
-  run.adapter->initialize();
+  run.adapter = test::error_only_adapter(*run.surface, o);
   return run;
 }
 

@@ -6,6 +6,9 @@
 
 #include <sys/wait.h>
 
+#include <csignal>
+#include <thread>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -47,6 +50,8 @@ TEST(ViewerHostile, CommandLineValuesAreCheckedAsTheCliChecksThem) {
   EXPECT_NE(refusal({"--smooth-iters", "2147483647"}).find("--smooth-iters expects"),
             std::string::npos);
   EXPECT_NE(refusal({"--volume", ""}).find("--volume needs a value, got an empty string"),
+            std::string::npos);
+  EXPECT_NE(refusal({"--camera", "0,0,1e38"}).find("the distance must be in [1e-4, 1e5]"),
             std::string::npos);
   const std::string long_scene(20000, 'x');
   const std::string m = refusal({"--scene", long_scene});
@@ -127,6 +132,76 @@ TEST(ViewerHostile, StartsWhateverItsSavedStateHolds) {
   EXPECT_LT(r.output.size(), 4000u);  // the name is not echoed whole
 }
 
+// Session 4: a state file with 200,000 `param.` lines ran for minutes (make_scene kept the
+// last value per key by comparing every pair; killed at 60 s): now read in seconds, and the
+// first unknown parameter is the message.
+TEST(ViewerHostile, AStateWithManyParametersIsReadInSeconds) {
+  const fs::path dir = test::render_scratch("viewer_hostile_many");
+  const fs::path state = dir / "viewer.conf";
+  {
+    std::ofstream out(state);
+    out << "scene = sinc\n";
+    for (int i = 1; i <= 200000; ++i) out << "param.p" << i << " = 1\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const ViewerRun r = run_viewer("--state '" + state.string() + "' --frames 2 --screenshot '" +
+                                     (dir / "shot.png").string() + "'",
+                                 dir / "log.txt");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 2) << r.output.substr(0, 2000);
+  EXPECT_NE(r.output.find("error shown: sinc: no parameter 'p1'"), std::string::npos)
+      << r.output.substr(0, 2000);
+  EXPECT_LT(seconds, 40.0);  // xvfb-run's start included
+}
+
+// A scripted run ended by a signal (session 4) exited 0 with no word, its movie looking like
+// a finished recording: now it says it was stopped and what stays, and ends with 128 + the
+// signal as dynamesh-cli does. The screenshot and frame log of an unfinished run are not
+// written.
+TEST(ViewerHostile, ASignalEndsAScriptedRunWithItsStatus) {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    const fs::path dir = test::render_scratch("viewer_hostile_signal_" + std::to_string(signal));
+    const fs::path pid_file = dir / "pid", movie = dir / "movie.mp4";
+    // sh records its pid, then becomes the viewer: the signal goes to the viewer itself.
+    const std::string command =
+        "timeout -s KILL 60 xvfb-run -a -s '-screen 0 1280x800x24' sh -c 'echo $$ > \"" +
+        pid_file.string() + "\"; exec \"" + DYNAMESH_VIEWER +
+        "\" --fresh --width 400 --height 300 --scene sinc --play --run-for 50 --record \"" +
+        movie.string() + "\" --screenshot \"" + (dir / "shot.png").string() + "\" --frame-log \"" +
+        (dir / "frames.csv").string() + "\"' > \"" + (dir / "log.txt").string() + "\" 2>&1";
+    std::thread viewer([&] {
+      const int raw = std::system(command.c_str());
+      std::ofstream(dir / "status") << (WIFEXITED(raw) ? WEXITSTATUS(raw) : -1);
+    });
+    // Signalled once frames are being recorded (into movie.mp4.partial until it is done).
+    const fs::path partial = movie.string() + ".partial";
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(40);
+    std::error_code ec;
+    while (!(fs::exists(partial) && fs::file_size(partial, ec) > 0) &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    pid_t pid = 0;
+    std::ifstream(pid_file) >> pid;
+    ASSERT_GT(pid, 0);
+    ::kill(pid, signal);
+    viewer.join();
+    int status = -1;
+    std::ifstream(dir / "status") >> status;
+    std::ifstream in(dir / "log.txt");
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(status, 128 + signal) << log;
+    EXPECT_NE(log.find("stopped by signal " + std::to_string(signal) +
+                       " before the scripted run was done; recorded "),
+              std::string::npos)
+        << log;
+    EXPECT_TRUE(fs::exists(movie)) << log;  // a whole file of the frames so far, as said
+    EXPECT_FALSE(fs::exists(dir / "shot.png"));
+    EXPECT_FALSE(fs::exists(dir / "frames.csv"));
+  }
+}
+
 // The formulas and settings that hung the CLI hang the viewer's worker the same way (a window
 // that never shows a mesh, a scripted run that never ends): the same up-front workload check
 // refuses them with its reason in the panel, and a scripted run exits 2.
@@ -139,6 +214,14 @@ TEST(ViewerHostile, SurfacesThatWouldHangAreRefusedWithTheReason) {
       {"overflow", "--scene expr --height-field 'exp(700*x)'", "not finite"},
       {"ripples", "--scene expr --height-field 'sin(1000*x)'", "more than the triangle budget"},
       {"tiny_threshold", "--scene sphere --threshold 1e-6", "more than the triangle budget"},
+      // Session 4: the edge-length demand (shared with dynamesh-cli, workload_check.h). Both
+      // ran for ever towards 10^8 triangles (killed at 60 s).
+      {"tiny_edge_length", "--scene sphere --edge-length 0.001",
+       "edges of at most the edge length 0.001 need at least about"},
+      {"tiny_scene_L", "--scene sphere --param L=0.001",
+       "edges of at most the scene's L 0.001 need at least about"},
+      {"tiny_edges_capsule", "--scene capsule-bend --edge-length 0.001",
+       "edges of at most the edge length 0.001 need at least about"},
   };
   for (const Case& c : cases) {
     const fs::path shot = dir / (c.name + ".png");
@@ -176,6 +259,26 @@ TEST(ViewerHostile, AThresholdNoBudgetCanMeetIsRefusedBeforeRefining) {
   const StepResult finer = sim.step(test::at(0.2, c));
   EXPECT_TRUE(finer.error.empty()) << finer.error;
   EXPECT_GT(finer.stats.triangles, 0u);
+}
+
+// The same for the edge length typed in the panel on a running mesh (a retune): refused before
+// refining, and the scene's own L works again after.
+TEST(ViewerHostile, AnEdgeLengthNoBudgetCanMeetIsRefusedBeforeRefining) {
+  Simulation sim;
+  SimulationControls c;
+  c.scene = "sphere";
+  ASSERT_TRUE(sim.step(test::at(0.2, c)).error.empty());
+  c.edge_length = 0.001;
+  const auto start = std::chrono::steady_clock::now();
+  const StepResult refused = sim.step(test::at(0.2, c));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_NE(refused.error.find("edges of at most the edge length 0.001"), std::string::npos)
+      << refused.error;
+  EXPECT_FALSE(refused.snapshot);
+  c.edge_length = 0.0;
+  const StepResult own = sim.step(test::at(0.2, c));
+  EXPECT_TRUE(own.error.empty()) << own.error;
+  EXPECT_GT(own.stats.triangles, 0u);
 }
 
 }  // namespace

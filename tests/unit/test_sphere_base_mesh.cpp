@@ -16,6 +16,7 @@
 #include "core/adapt/adapter.h"
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
+#include "tests/support/error_only_adapter.h"
 
 namespace dynamesh {
 namespace {
@@ -29,10 +30,8 @@ TEST(SphereBaseMesh, AdaptedSphereCountAgainstTheRightIsoscelesFloor) {
   o.threshold = 1e-3;
   o.epsilon = o.threshold / 4;
   // The geometric error everywhere (the scene's default is multi-criteria).
-  CriterionList criteria;
-  criteria.push_back(std::make_unique<GeometricErrorCriterion>(o.threshold, o.epsilon));
-  Adapter adapter(*surface, o, std::move(criteria));
-  adapter.initialize();
+  const std::unique_ptr<Adapter> owned = test::error_only_adapter(*surface, o);
+  Adapter& adapter = *owned;
   const double R = 1.0;
   const double floor = 2 * std::numbers::pi * R / o.threshold;
   const auto triangles = static_cast<double>(adapter.mesh().n_faces());
@@ -98,10 +97,8 @@ TEST(SphereBaseMesh, OctaveMeanOfTheLevelFactorIsOneOverLnTwo) {
     AdaptOptions o;
     o.threshold = T;
     o.epsilon = T / 4;
-    CriterionList criteria;
-    criteria.push_back(std::make_unique<GeometricErrorCriterion>(o.threshold, o.epsilon));
-    Adapter adapter(*surface, o, std::move(criteria));
-    adapter.initialize();
+    const std::unique_ptr<Adapter> owned = test::error_only_adapter(*surface, o);
+    const Adapter& adapter = *owned;
     const Mesh48& mesh = adapter.mesh();
     double area = 0, level = 0, shape = 0, worst_error = 0, finer = 0;
     for (Face f : mesh.live_faces()) {

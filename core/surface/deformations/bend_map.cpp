@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "core/surface/polynomial_atan.h"
+
 namespace dynamesh {
 
 namespace {
@@ -21,7 +23,7 @@ Scaled scaled(double kappa, const Vec3& p) {
   v.a = kappa * p.x();
   v.b = 1.0 - kappa * p.y();
   v.s = std::sqrt(v.a * v.a + v.b * v.b);  // b is near 1: no overflow, no need for hypot
-  v.theta = std::atan2(v.a, v.b);
+  v.theta = polynomial_atan2(v.a, v.b);    // glibc's atan2 was 10% of a capsule step
   return v;
 }
 

@@ -63,16 +63,15 @@ std::string number(double x) {
 
 }  // namespace
 
-MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options) {
+MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options,
+                         std::vector<float>& squared) {
   const float r2 = static_cast<float>(options.erosion_mm * options.erosion_mm);
   const double ml_per_voxel = head.grid.voxel_volume() / 1000.0;
   // Erosion: what lies farther than the radius from any dark voxel.
   MaskVolume core(head.grid, 0);
-  {
-    const DistanceTransformResult to_dark = distance_transform(head, 0);
-    for (std::size_t v = 0; v < core.values.size(); ++v)
-      core.values[v] = head.values[v] && to_dark.squared[v] > r2 ? 1 : 0;
-  }
+  squared_distance_transform(head, 0, squared);
+  for (std::size_t v = 0; v < core.values.size(); ++v)
+    core.values[v] = head.values[v] && squared[v] > r2 ? 1 : 0;
   // The brain prior picks the largest eroded piece away from the border.
   std::vector<std::uint32_t> label;
   const std::vector<Piece> pieces = label_pieces(core, label);
@@ -88,9 +87,9 @@ MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& o
   MaskVolume brain(head.grid, 0);
   std::size_t voxels = 0;
   if (best != 0) {
-    const DistanceTransformResult to_core = distance_transform(core, 1);
+    squared_distance_transform(core, 1, squared);
     for (std::size_t v = 0; v < brain.values.size(); ++v) {
-      brain.values[v] = head.values[v] && to_core.squared[v] <= r2 ? 1 : 0;
+      brain.values[v] = head.values[v] && squared[v] <= r2 ? 1 : 0;
       voxels += brain.values[v];
     }
   }
@@ -106,6 +105,11 @@ MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& o
         "); pass a brain mask with --mask FILE (e.g. from FSL BET or SynthStrip)");
   }
   return brain;
+}
+
+MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options) {
+  std::vector<float> squared;
+  return extract_brain(head, options, squared);
 }
 
 }  // namespace dynamesh

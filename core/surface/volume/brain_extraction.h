@@ -11,6 +11,8 @@
 // there), and a dilation by the same radius inside the head's mask gives its shape back.
 #pragma once
 
+#include <vector>
+
 #include "core/surface/volume/voxel_grid.h"
 
 namespace dynamesh {
@@ -27,5 +29,8 @@ struct BrainExtractionOptions {
 // `head`: the thresholded head (1 = bright tissue). Returns the brain's mask on the same
 // grid. Throws std::invalid_argument when no piece fits the prior (one line, naming --mask).
 MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options = {});
+// The same with a caller's buffer for the squared distances (reused across transforms).
+MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options,
+                         std::vector<float>& squared);
 
 }  // namespace dynamesh

@@ -28,11 +28,13 @@ struct LineScratch {
 
 // Felzenszwalb-Huttenlocher 2012, Algorithm "DT(f)" in one dimension with sample spacing h:
 // d(q) = min_p h^2 (q - p)^2 + f(p). Sites with f = inf hold no parabola and are skipped.
+// With `Features`, the index carried by the minimising site goes along (feature transform).
+template <bool Features>
 void envelope_1d(LineScratch& s, int n, double h, float* d, std::uint32_t* feature,
                  std::size_t stride) {
   for (int q = 0; q < n; ++q) {
     s.f[q] = d[q * stride];
-    s.feature[q] = feature[q * stride];
+    if constexpr (Features) s.feature[q] = feature[q * stride];
   }
   const double h2 = h * h;
   const auto intersection = [&](int p, int q) {
@@ -60,12 +62,13 @@ void envelope_1d(LineScratch& s, int n, double h, float* d, std::uint32_t* featu
     while (s.z[k + 1] < q) ++k;
     const int p = s.v[k];
     d[q * stride] = static_cast<float>(h2 * (q - p) * (q - p) + s.f[p]);
-    feature[q * stride] = s.feature[p];
+    if constexpr (Features) feature[q * stride] = s.feature[p];
   }
 }
 
-// One pass along `axis` over every line, in parallel.
-void pass(DistanceTransformResult& r, const VoxelGrid& grid, int axis, double h) {
+// One pass along `axis` over every line, in parallel; `nearest` is null without features.
+template <bool Features>
+void pass(float* squared, std::uint32_t* nearest, const VoxelGrid& grid, int axis, double h) {
   const auto& d = grid.dims;
   const std::size_t stride = axis == 0 ? 1 : axis == 1 ? d[0] : std::size_t(d[0]) * d[1];
   const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;  // the two other axes
@@ -80,7 +83,8 @@ void pass(DistanceTransformResult& r, const VoxelGrid& grid, int axis, double h)
       ijk[a1] = static_cast<int>(line % d[a1]);
       ijk[a2] = static_cast<int>(line / d[a1]);
       const std::size_t start = grid.index(ijk[0], ijk[1], ijk[2]);
-      envelope_1d(scratch, d[axis], h, r.squared.data() + start, r.nearest.data() + start, stride);
+      envelope_1d<Features>(scratch, d[axis], h, squared + start,
+                            Features ? nearest + start : nullptr, stride);
     }
   }
 }
@@ -97,6 +101,8 @@ DistanceTransformResult distance_transform(const MaskVolume& mask, std::uint8_t 
                                            std::string_view stage) {
   const std::size_t n = mask.values.size();
   DistanceTransformResult r;
+  reserve_huge(r.squared, n);
+  reserve_huge(r.nearest, n);
   r.squared.assign(n, kInf);
   r.nearest.assign(n, kNone);
 #pragma omp parallel for schedule(static)
@@ -108,10 +114,22 @@ DistanceTransformResult distance_transform(const MaskVolume& mask, std::uint8_t 
   }
   const Vec3 spacing = mask.grid.spacing();
   for (int axis = 0; axis < 3; ++axis) {
-    pass(r, mask.grid, axis, spacing[axis]);
+    pass<true>(r.squared.data(), r.nearest.data(), mask.grid, axis, spacing[axis]);
     report(progress, stage, (axis + 1) / 3.0);
   }
   return r;
+}
+
+void squared_distance_transform(const MaskVolume& mask, std::uint8_t target,
+                                std::vector<float>& squared) {
+  const auto n = static_cast<std::ptrdiff_t>(mask.values.size());
+  reserve_huge(squared, mask.values.size());
+  squared.resize(mask.values.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t v = 0; v < n; ++v) squared[v] = mask.values[v] == target ? 0.0f : kInf;
+  const Vec3 spacing = mask.grid.spacing();
+  for (int axis = 0; axis < 3; ++axis)
+    pass<false>(squared.data(), nullptr, mask.grid, axis, spacing[axis]);
 }
 
 ScalarVolume signed_distance(const MaskVolume& mask, const ProgressCallback& progress) {
@@ -191,7 +209,9 @@ ScalarVolume signed_distance_to_level(const ScalarVolume& field, double level,
         }
       }
   // Pass 2: foot points of the interface voxels only, addressed through a slot table.
-  std::vector<std::uint32_t> slot(field.values.size(), kNone);
+  std::vector<std::uint32_t> slot;
+  reserve_huge(slot, field.values.size());
+  slot.assign(field.values.size(), kNone);
   std::vector<Foot> feet;
   for (std::size_t v = 0; v < field.values.size(); ++v) {
     if (!interface.values[v]) continue;

@@ -29,6 +29,12 @@ DistanceTransformResult distance_transform(const MaskVolume& mask, std::uint8_t 
                                            const ProgressCallback& progress = {},
                                            std::string_view stage = "distance transform");
 
+// The squared distances alone (no feature transform), written into `squared`, which is
+// resized to the grid: callers that threshold several transforms (morphology) reuse one
+// buffer instead of faulting in two fresh full-grid arrays per transform.
+void squared_distance_transform(const MaskVolume& mask, std::uint8_t target,
+                                std::vector<float>& squared);
+
 // Signed distance to the mask's boundary at every voxel centre, in mm: negative inside.
 // The boundary is taken as the faces of the mask's voxel cells: from a voxel x whose nearest
 // voxel of the other kind is f, the distance is |x - f| less the part of the segment that

@@ -10,5 +10,7 @@ namespace dynamesh {
 // voxels replicated). Axes whose sigma is below a tenth of a voxel are left alone; sigma_mm
 // <= 0 returns a copy.
 ScalarVolume gaussian_smoothed(const ScalarVolume& volume, double sigma_mm);
+// The same in place (one scratch buffer instead of a copy and a scratch buffer).
+void gaussian_smooth(ScalarVolume& volume, double sigma_mm);
 
 }  // namespace dynamesh

@@ -155,14 +155,17 @@ void MriLayers::resegment(const ProgressCallback& progress) {
                               : segment_volume(intensity_, options_.segmentation, progress);
   timings_.segment = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  ScalarVolume indicator(segmentation_.mask.grid, 0.0f);
-  std::copy(segmentation_.mask.values.begin(), segmentation_.mask.values.end(),
-            indicator.values.begin());
-  indicator = gaussian_smoothed(indicator, options_.boundary_smoothing_mm);
+  ScalarVolume indicator;
+  indicator.grid = segmentation_.mask.grid;
+  reserve_huge(indicator.values, segmentation_.mask.values.size());
+  indicator.values.assign(segmentation_.mask.values.begin(), segmentation_.mask.values.end());
+  gaussian_smooth(indicator, options_.boundary_smoothing_mm);
   report(progress, "distance transform", 0.1);
   ScalarVolume distance = signed_distance_to_level(
       indicator, 0.5, [&](std::string_view s, double f) { report(progress, s, 0.1 + 0.8 * f); });
-  distance_ = CubicBSplineField(gaussian_smoothed(distance, options_.distance_smoothing_mm));
+  indicator = {};
+  gaussian_smooth(distance, options_.distance_smoothing_mm);
+  distance_ = CubicBSplineField(std::move(distance));
   report(progress, "distance transform", 1.0);
   timings_.distance = seconds_since(start);
   analyse_mask();

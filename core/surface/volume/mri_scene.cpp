@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/io/label_atlas.h"
+#include "core/surface/parameter_table.h"
 #include "core/surface/volume/mri_surface.h"
 
 namespace dynamesh {
@@ -41,11 +42,17 @@ std::shared_ptr<const LabelAtlas> load_atlas(const std::filesystem::path& path,
   return atlas;
 }
 
+SurfaceParameter closing_parameter() {
+  return {"closing", MriOptions{}.closing_radius_mm, kMinClosingMm, kMaxClosingMm, kClosingHelp};
+}
+
 // The numbers the builder itself uses: building with the segmentation threshold avoids
 // segmenting and transforming twice. Out-of-range values are left to make_scene, whose
 // range check gives the usual message.
 void take_overrides(const ParameterOverrides& overrides, MriOptions& options) {
   for (const auto& [key, value] : overrides) {
+    // The closing's range does not depend on the volume: refused before loading it.
+    if (key == "closing") check_parameter_value(MriSurface::kName, closing_parameter(), value);
     if (!std::isfinite(value) || value < 0.0) continue;
     if (key == "threshold") options.threshold = value;
     if (key == "depth_max") options.depth_max = value;
@@ -77,6 +84,7 @@ std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
     options.volume_path = value;
     volume_given = true;
   }
+  take_overrides(request.overrides, options);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.volume_path, ec) &&
       !std::filesystem::is_directory(options.volume_path, ec)) {
@@ -90,7 +98,6 @@ std::unique_ptr<Surface> build_mri_scene(const SceneRequest& request) {
                                 "' is not a readable file (--volume takes a NIfTI .nii or "
                                 ".nii.gz file, or a folder holding one DICOM series)");
   }
-  take_overrides(request.overrides, options);
   options.progress = request.progress;
   options.max_memory_mb = request.max_memory_mb;
   std::unique_ptr<MriSurface> surface;
@@ -117,7 +124,7 @@ SceneRegistration mri_scene_registration() {
        "depth - 1 mm)"},
       {"threshold", 0.0, 0.0, 32767.0,
        "segmentation intensity threshold, at most the volume's maximum; 0 means Otsu's"},
-      {"closing", MriOptions{}.closing_radius_mm, 0.0, kMaxClosingMm, kClosingHelp}};
+      closing_parameter()};
   SceneRegistration r;
   r.name = MriSurface::kName;
   r.description = std::string(MriSurface::kDescription) +

@@ -38,7 +38,8 @@ std::vector<SurfaceParameter> MriSurface::parameters() const {
           {"threshold", layers_.options().segmentation.threshold, 0.0, layers_.intensity_range()[1],
            "segmentation intensity threshold; 0 means Otsu's (currently " +
                std::to_string(layers_.segmentation().threshold) + ")"},
-          {"closing", layers_.segmentation().closing_radius_mm, 0.0, kMaxClosingMm, kClosingHelp}};
+          {"closing", layers_.segmentation().closing_radius_mm, kMinClosingMm, kMaxClosingMm,
+           kClosingHelp}};
 }
 
 void MriSurface::set_parameter(const std::string& name, double value) {

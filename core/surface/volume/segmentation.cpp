@@ -83,21 +83,23 @@ Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
   Segmentation s;
   s.mask = std::move(mask);
   report(progress, kStage, 0.4);
-  open_mask(s.mask, options.opening_radius_mm);
+  std::vector<float> squared;  // one full-grid buffer for every distance transform below
+  open_mask(s.mask, options.opening_radius_mm, squared);
   s.components = keep_largest_component(s.mask);
   if (s.components == 0)
     throw std::invalid_argument("segmentation: no voxel" + where + " is left by the " +
                                 number(options.opening_radius_mm) + " mm opening" + kHint);
   if (may_extract && options.extract_brain && options.max_border_contact_mm2 > 0.0 &&
       border_contact_mm2(s.mask) > options.max_border_contact_mm2) {
-    s.mask = extract_brain(s.mask, options.extraction);
+    s.mask = extract_brain(s.mask, options.extraction, squared);
     keep_largest_component(s.mask);
     s.extracted = true;
   }
   check_plausible(s.mask, options);
   report(progress, kStage, 0.5);
   s.closing_radius_mm = closing_radius(s.mask, options);
-  close_mask(s.mask, s.closing_radius_mm);
+  close_mask(s.mask, s.closing_radius_mm, squared);
+  squared = {};
   report(progress, kStage, 0.8);
   s.holes_filled = fill_holes(s.mask);
   s.voxels = static_cast<std::size_t>(std::count(s.mask.values.begin(), s.mask.values.end(), 1));
@@ -107,30 +109,49 @@ Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
 
 }  // namespace
 
-void close_mask(MaskVolume& mask, double radius_mm) {
-  if (!(radius_mm > 0.0)) return;
-  const float r2 = static_cast<float>(radius_mm * radius_mm);
-  const DistanceTransformResult to_inside = distance_transform(mask, 1);
-  for (std::size_t v = 0; v < mask.values.size(); ++v) {
-    mask.values[v] = to_inside.squared[v] <= r2 ? 1 : 0;
-  }
-  const DistanceTransformResult to_outside = distance_transform(mask, 0);
-  for (std::size_t v = 0; v < mask.values.size(); ++v) {
-    if (mask.values[v] && to_outside.squared[v] <= r2) mask.values[v] = 0;
+namespace {
+
+// Dilation: mask := {squared distance to the voxels valued `target` <= r2}; with `erode`,
+// erosion: mask := mask and not that. `squared` is the caller's reused buffer.
+void dilate_into(MaskVolume& mask, std::uint8_t target, float r2, bool erode,
+                 std::vector<float>& squared) {
+  squared_distance_transform(mask, target, squared);
+  const auto n = static_cast<std::ptrdiff_t>(mask.values.size());
+  std::uint8_t* m = mask.values.data();
+  const float* d = squared.data();
+  if (erode) {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t v = 0; v < n; ++v) m[v] = m[v] && !(d[v] <= r2) ? 1 : 0;
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t v = 0; v < n; ++v) m[v] = d[v] <= r2 ? 1 : 0;
   }
 }
 
-void open_mask(MaskVolume& mask, double radius_mm) {
+}  // namespace
+
+void close_mask(MaskVolume& mask, double radius_mm, std::vector<float>& scratch) {
   if (!(radius_mm > 0.0)) return;
   const float r2 = static_cast<float>(radius_mm * radius_mm);
-  const DistanceTransformResult to_outside = distance_transform(mask, 0);
-  for (std::size_t v = 0; v < mask.values.size(); ++v) {
-    if (mask.values[v] && to_outside.squared[v] <= r2) mask.values[v] = 0;
-  }
-  const DistanceTransformResult to_inside = distance_transform(mask, 1);
-  for (std::size_t v = 0; v < mask.values.size(); ++v) {
-    mask.values[v] = to_inside.squared[v] <= r2 ? 1 : 0;
-  }
+  dilate_into(mask, 1, r2, false, scratch);  // dilation: within r of the inside
+  dilate_into(mask, 0, r2, true, scratch);   // erosion: farther than r from the outside
+}
+
+void open_mask(MaskVolume& mask, double radius_mm, std::vector<float>& scratch) {
+  if (!(radius_mm > 0.0)) return;
+  const float r2 = static_cast<float>(radius_mm * radius_mm);
+  dilate_into(mask, 0, r2, true, scratch);
+  dilate_into(mask, 1, r2, false, scratch);
+}
+
+void close_mask(MaskVolume& mask, double radius_mm) {
+  std::vector<float> scratch;
+  close_mask(mask, radius_mm, scratch);
+}
+
+void open_mask(MaskVolume& mask, double radius_mm) {
+  std::vector<float> scratch;
+  open_mask(mask, radius_mm, scratch);
 }
 
 Segmentation segment_volume(const ScalarVolume& intensity, const SegmentationOptions& options,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/surface/volume/brain_extraction.h"
 #include "core/surface/volume/progress.h"
@@ -41,12 +42,12 @@ struct SegmentationOptions {
 
 struct Segmentation {
   MaskVolume mask;
-  double threshold = 0.0;        // the threshold used
-  bool otsu = false;             // whether it was Otsu's
-  std::size_t components = 0;    // face-connected components above the threshold
-  std::size_t holes_filled = 0;  // voxels
-  std::size_t voxels = 0;        // in the final mask
-  bool extracted = false;        // whether the brain was extracted from a head
+  double threshold = 0.0;          // the threshold used
+  bool otsu = false;               // whether it was Otsu's
+  std::size_t components = 0;      // face-connected components above the threshold
+  std::size_t holes_filled = 0;    // voxels
+  std::size_t voxels = 0;          // in the final mask
+  bool extracted = false;          // whether the brain was extracted from a head
   double closing_radius_mm = 0.0;  // the closing's radius (after sizing to the anatomy)
   double volume_ml() const { return voxels * mask.grid.voxel_volume() / 1000.0; }
 };
@@ -66,5 +67,8 @@ Segmentation segment_mask(MaskVolume mask, const SegmentationOptions& options,
 void close_mask(MaskVolume& mask, double radius_mm);
 // Morphological opening (erosion then dilation by a ball of `radius_mm`).
 void open_mask(MaskVolume& mask, double radius_mm);
+// The same with a caller's buffer for the squared distances (reused across calls).
+void close_mask(MaskVolume& mask, double radius_mm, std::vector<float>& scratch);
+void open_mask(MaskVolume& mask, double radius_mm, std::vector<float>& scratch);
 
 }  // namespace dynamesh

@@ -15,6 +15,7 @@
 #include <Eigen/LU>
 
 #include "core/geometry/vector_types.h"
+#include "core/surface/volume/huge_pages.h"
 
 namespace dynamesh {
 
@@ -62,7 +63,10 @@ struct VoxelVolume {
   std::vector<T> values;  // grid.count() values, indexed by grid.index()
 
   VoxelVolume() = default;
-  VoxelVolume(const VoxelGrid& g, T fill) : grid(g), values(g.count(), fill) {}
+  VoxelVolume(const VoxelGrid& g, T fill) : grid(g) {
+    reserve_huge(values, g.count());
+    values.assign(g.count(), fill);
+  }
 
   T& at(int i, int j, int k) { return values[grid.index(i, j, k)]; }
   const T& at(int i, int j, int k) const { return values[grid.index(i, j, k)]; }
