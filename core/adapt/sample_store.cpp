@@ -167,9 +167,31 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     }
   }
   const QuadraticErrorModel::Result r = model.evaluate();
-  face_error_[f.idx] = r.error;
+  face_error_[f.idx] = peak_floor_ > 0.0 && r.error >= peak_floor_
+                           ? std::max(r.error, edge_peaks(probe, p, uv))
+                           : r.error;
   measured_[f.idx] = 1;
   return r.resolved;
+}
+
+double SampleStore::edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]) {
+  double worst = 0.0;
+  for (int e = 0; e < 3; ++e) {
+    // Edge e joins vertices e + 1 (t = 0) and e + 2 (t = 1).
+    const auto at = [&](double t) {
+      Vec3 b = Vec3::Zero();
+      b[(e + 1) % 3] = 1.0 - t;
+      b[(e + 2) % 3] = t;
+      return probe.residual_at(p, uv, b);
+    };
+    const Vec3 quarter = at(0.25), half = at(0.5), three_quarters = at(0.75);
+    const EdgePeak peak = edge_peak(quarter, half, three_quarters);
+    // The measured peak, and the interpolant's where it reads higher (as the quadratic
+    // model's maximum counts beside the samples).
+    worst = std::max(
+        {worst, quarter.norm(), half.norm(), three_quarters.norm(), peak.value, at(peak.t).norm()});
+  }
+  return worst;
 }
 
 void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,

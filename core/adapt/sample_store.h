@@ -40,6 +40,12 @@ class SampleStore final : public MeshListener {
   // Fresh patterns on every face of `mesh` (positions define the areas).
   void reset(const Mesh48& mesh);
   void set_density(double density) { density_ = density; }
+  // Faces whose estimate reaches `floor` have their edges searched for the residual's peak
+  // (error_model.h, EdgePeak): three evaluations at the quarter points of each edge and one at
+  // the interpolant's peak, a dozen per face. Only faces near the split bound need it: the
+  // adapter sets the floor below T + eps by more than the quadratic model under-reads a peak
+  // (adapter.cpp, kPeakSearchBand). 0 (the default): no search.
+  void set_peak_search_floor(double floor) { peak_floor_ = floor; }
   double density() const { return density_; }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
@@ -64,7 +70,8 @@ class SampleStore final : public MeshListener {
   std::size_t refresh_patterns(const Mesh48& mesh);
 
   // L-infinity error of the face as of its last evaluation: the larger of its largest sample
-  // error and the maximum of the quadratic model fitted to its samples (error_model.h).
+  // error and the maximum of the quadratic model fitted to its samples (error_model.h), and,
+  // at or above the peak search floor, its edges' peaks.
   double face_error(Face f) const { return face_error_[f.idx]; }
   std::uint32_t count(Face f) const { return face_count_[f.idx]; }
   // False when the face's samples changed (split, weld, new pattern) since it was last
@@ -111,9 +118,12 @@ class SampleStore final : public MeshListener {
   void prefetch_face(const Mesh48& mesh, Face f) const;
   // Measures one face; returns whether its error estimate is resolved.
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
+  // The largest residual found along the triangle's three edges (EdgePeak).
+  static double edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]);
   std::uint32_t target_count(const Mesh48& mesh, Face f) const;
 
   double density_;
+  double peak_floor_ = 0.0;
   std::uint64_t seed_;
   std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
