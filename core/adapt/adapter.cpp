@@ -402,7 +402,13 @@ void Adapter::sampling() {
   predictor_.begin_step(mesh_, probe_, start_positions_, step_);
   predictor_.select(
       mesh_, probe_, samples_,
-      [&](Face f, double error) { return split_urgency(f, error, false) > 1.0; }, to_measure_);
+      [&](Face f, double error) {
+        // `error` is the face's last reading plus its bound. A face whose reading could
+        // cross the edge peak search's floor is measured too (SampleStore).
+        return split_urgency(f, error, false) > 1.0 ||
+               samples_.near_peak_search_floor(f, error - samples_.face_error(f));
+      },
+      to_measure_);
   measure(to_measure_);
   stats_.faces_measured += to_measure_.size();
 }

@@ -54,6 +54,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   face_error_.resize(capacity, 0.0);
   face_dense_.resize(capacity, 0);
   measured_.resize(capacity, 0);
+  model_error_.resize(capacity, 0.0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -138,6 +139,7 @@ void SampleStore::reset(const Mesh48& mesh) {
   face_error_.assign(mesh.face_capacity(), 0.0);
   face_dense_.assign(mesh.face_capacity(), 0);
   measured_.assign(mesh.face_capacity(), 0);
+  model_error_.assign(mesh.face_capacity(), 0.0);
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
@@ -167,6 +169,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     }
   }
   const QuadraticErrorModel::Result r = model.evaluate();
+  model_error_[f.idx] = r.error;
   face_error_[f.idx] = peak_floor_ > 0.0 && r.error >= peak_floor_
                            ? std::max(r.error, edge_peaks(probe, p, uv))
                            : r.error;
@@ -253,7 +256,12 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
         model.add(pb, probe.residual_at(p, uv, pb));
       });
     }
-    worst = std::max(worst, model.sample_max() > ceiling ? model.sample_max() : model.estimate());
+    double estimate = model.sample_max() > ceiling ? model.sample_max() : model.estimate();
+    // The same reading the parent would get once welded (evaluate_face): were its edge peak
+    // left out here, a weld just below the bound could be split again at once, step after step.
+    if (peak_floor_ > 0.0 && estimate >= peak_floor_ && estimate <= ceiling)
+      estimate = std::max(estimate, edge_peaks(probe, p, uv));
+    worst = std::max(worst, estimate);
     if (worst > ceiling) return worst;
   }
   return worst;

@@ -17,6 +17,7 @@
 // pool is compacted in face order. No allocation per operation once the pool has grown.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -46,6 +47,12 @@ class SampleStore final : public MeshListener {
   // adapter sets the floor below T + eps by more than the quadratic model under-reads a peak
   // (adapter.cpp, kPeakSearchBand). 0 (the default): no search.
   void set_peak_search_floor(double floor) { peak_floor_ = floor; }
+  // Whether the face's model reading, moved by up to `bound`, could cross the peak search
+  // floor: its reading would then jump by its edge peaks' excess over the model, which no
+  // bound on the residual covers, so predictive sampling must measure it.
+  bool near_peak_search_floor(Face f, double bound) const {
+    return peak_floor_ > 0.0 && std::abs(model_error_[f.idx] - peak_floor_) <= bound;
+  }
   double density() const { return density_; }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
@@ -57,7 +64,8 @@ class SampleStore final : public MeshListener {
                       const std::vector<Face>& faces);
   void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
   // The L-infinity error the weld planned in `plan` would leave: every sample of the star
-  // measured against the two (one) parent triangles, with the quadratic model.
+  // measured against the two (one) parent triangles, with the quadratic model (and, at or
+  // above the peak search floor, the parents' edge peaks, as evaluate_faces would read them).
   // The estimate also covers the restored edge's midpoint (where the removed vertex sat),
   // measured first: when its error already exceeds `ceiling` the weld cannot be allowed,
   // and that lower bound is returned without evaluating the samples. Likewise a sample or a
@@ -133,6 +141,7 @@ class SampleStore final : public MeshListener {
   std::vector<double> face_error_;
   std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
   std::vector<std::uint8_t> measured_;        // measured() per face
+  std::vector<double> model_error_;           // the quadratic model's reading (peak search floor)
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
   std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
 };
