@@ -17,7 +17,7 @@ namespace {
 
 // The paper's error is the L-infinity distance over each triangle, estimated from its samples
 // (Section 3.1); splits are decided at T + eps. Sparse samples with the quadratic model
-// (error_model.h) under-read a face's true peak by up to 26% on the twisted bar at T = 0.004
+// (error_model.h) under-read a face's true peak by up to 33% on the twisted bar at T = 0.004
 // (measured against a dense exact-distance measurement, seeds 1-8; the peaks lie on the
 // faces' edges, EdgePeak), so a face read at or above 0.7 (T + eps) could be above T + eps:
 // those faces, and only those, have their edges searched for the peak. Faces read below it

@@ -68,7 +68,7 @@ class QuadraticErrorModel {
 // edge's quarter points. On a saddle-shaped patch (the twisted bar's sides, paper Section 5)
 // |r| is largest on the triangle's edges, and a residual whose curvature varies across a
 // long edge (a rounded rim) is not quadratic there: its peak moves off the midpoint and rises
-// above the quadratic model's A / 4 (by up to 26% on twist at T = 0.004, where the nine
+// above the quadratic model's A / 4 (by up to 33% on twist at T = 0.004, where the nine
 // stratified samples of a face lie inside it and only extrapolate to the edge). Along the
 // edge r(t) = t (1 - t) q(t) vanishes at both ends; q is interpolated by the quadratic through
 // r(1/4), r(1/2), r(3/4), which makes r exact to fourth order, and the quartic's maximum over
