@@ -403,13 +403,9 @@ void Adapter::sampling() {
   predictor_.select(
       mesh_, probe_, samples_,
       [&](Face f, double error) {
-        // `error` is the face's last reading plus its bound. A face whose reading includes,
-        // or could come to include, its edge peaks is measured too: the predictor's bound
-        // covers the quadratic model's reading, not the peaks' higher-order terms, and the
-        // reading jumps where the model crosses the search floor (SampleStore). A face's
-        // reading is at or above the floor exactly when its model's is.
+        // `error` is the face's last reading plus its bound. A face whose reading could
+        // cross the edge peak search's floor is measured too (SampleStore).
         return split_urgency(f, error, false) > 1.0 ||
-               samples_.face_error(f) >= peak_search_floor(options_) ||
                samples_.near_peak_search_floor(f, error - samples_.face_error(f));
       },
       to_measure_);
