@@ -95,8 +95,11 @@ TEST(FrameReuse, SurfaceTurningUnderAStillVertexIsSeen) {
   Mesh48 mesh = refined_mesh(s, 6);
   SmoothingWorkspace workspace;
   SmoothingOptions o;
-  smooth_tangentially(mesh, s, o, &workspace);  // every frame cached
-  const Vertex pivot = mesh.live_vertices()[mesh.n_vertices() / 3];
+  Mesh48 warm = mesh;
+  smooth_tangentially(warm, s, o, &workspace);  // every frame cached, at mesh's positions
+  // A pivot the rotating fresh evaluation does not pick on the next (second) call.
+  Vertex pivot = mesh.live_vertices()[mesh.n_vertices() / 3];
+  if ((pivot.idx + 1) % 8 == 0) pivot = mesh.live_vertices()[mesh.n_vertices() / 3 + 1];
   turn(s, mesh, mesh.position(pivot), 0.5);  // ~29 degrees: the pivot stays exactly in place
   Mesh48 reused = mesh, fresh = mesh;
   const SmoothingResult r = smooth_tangentially(reused, s, o, &workspace);
@@ -107,7 +110,8 @@ TEST(FrameReuse, SurfaceTurningUnderAStillVertexIsSeen) {
 
 // A small motion: most frames are reused (the skip is taken), every vertex is evaluated
 // afresh at least every kFrameReuseCalls = 8 calls, and the smoothing differs from the one
-// without reuse by far less than an edge.
+// without reuse by what a frame that stale can be off: 8 calls of 2e-4 rad turn, times a
+// move of up to about an edge (twice that, for the curvature weights).
 TEST(FrameReuse, SmallMotionReusesFramesWithinABoundedDifference) {
   MovedEllipsoid s;
   Mesh48 mesh = refined_mesh(s, 6);
@@ -132,7 +136,7 @@ TEST(FrameReuse, SmallMotionReusesFramesWithinABoundedDifference) {
               least, most, worst / edge);
   EXPECT_GT(least, n / 2);
   EXPECT_LE(most, n - n / 8 + 1);  // the rotating fresh evaluation
-  EXPECT_LT(worst, 1e-3 * edge);
+  EXPECT_LT(worst, 2.0 * 8 * 2e-4 * edge);
 }
 
 // Through the adapter: a twist step reuses most curvature frames, and the predictor takes
@@ -220,7 +224,7 @@ TEST(FoldScreenAround, AdapterStepsMatchTheFullScreen) {
     test::SceneRun changed = test::start_scene(scene, o, 0.3);
     o.fold_repair.screen_changed_only = false;
     test::SceneRun all = test::start_scene(scene, o, 0.3);
-    for (int i = 1; i <= 30; ++i) {
+    for (int i = 1; i <= 20; ++i) {
       const double t = 0.3 + 0.01 * i;
       const StepStats a = changed.adapter->step(t);
       const StepStats b = all.adapter->step(t);
