@@ -416,8 +416,14 @@ void Adapter::normal_correction() {
 }
 
 void Adapter::tangential_correction() {
-  const SmoothingResult r =
-      smooth_tangentially(mesh_, surface_, options_.smoothing, &smoothing_workspace_);
+  // A step that needed sub-steps moves fast against the mesh: frames go stale within it, so
+  // none is reused (tangential_smoothing.cpp, frame_reusable). Nor on parametric surfaces:
+  // on sinc, reuse let skipped faces' errors escape the predictor's bound (5.8x of it over
+  // 100 steps, PredictiveAnimation/sinc; 0.79x without reuse), not yet understood.
+  SmoothingOptions smoothing = options_.smoothing;
+  smoothing.reuse_frames =
+      smoothing.reuse_frames && stats_.substeps == 1 && !probe_.parametric();
+  const SmoothingResult r = smooth_tangentially(mesh_, surface_, smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
   if (!probe_.parametric() && options_.sampling == Sampling::kPredictive) {
     // Where the smoothing moved a vertex, its projection's F and grad F (ErrorPredictor::note).

@@ -178,7 +178,9 @@ PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v)
 // against the frames' normals (a fold turns a face by far more). No error bound depends on
 // the frames: the sampled error still decides every split and weld. Frames are forgotten for
 // vertices born by a split (SmoothingWorkspace::after_split) and when the caller replaces the
-// mesh (forget_frames).
+// mesh (forget_frames). The adapter reuses none in a step that needed sub-steps (a motion fast
+// against the mesh); a sub-stepped twist (MotionFrames.AnalyticScenesReturnToStart) otherwise
+// drifted 6.6% in triangles between its second and third cycles, against 1.2% without reuse.
 constexpr std::uint64_t kFrameReuseCalls = 8;
 constexpr double kFrameReuseAngle = 0.05;  // radians
 
