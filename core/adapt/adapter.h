@@ -151,6 +151,9 @@ class Adapter {
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
   std::uint64_t step_ = 0;
+  // Numbers the surface states a step goes through (one per advance), so that F and grad F
+  // evaluated where a vertex landed are reused only in the same state (ErrorPredictor::note).
+  std::uint64_t surface_epoch_ = 0;
   std::uint32_t splits_since_clock_ = 0;  // the deadline is checked every 64 splits
   double last_time_ = 0.0;
   std::vector<double> last_parameters_;

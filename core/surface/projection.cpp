@@ -31,6 +31,8 @@ ProjectionResult project_to_surface(const ImplicitSurface& surface, const Projec
   Vec3 g = start.gradient;
   double f = start.value;
   result.residual = std::abs(f);
+  result.value = f;
+  result.gradient = g;
   if (!std::isfinite(f)) return result;
   for (;;) {
     const double g2 = g.squaredNorm();
@@ -62,6 +64,8 @@ ProjectionResult project_to_surface(const ImplicitSurface& surface, const Projec
     f = f_next;
     g = g_next;
     result.residual = std::abs(f);
+    result.value = f;
+    result.gradient = g;
   }
 }
 

@@ -7,6 +7,8 @@
 // The result always says whether it converged; it is never garbage silently.
 #pragma once
 
+#include <cstdint>
+
 #include "core/geometry/vector_types.h"
 #include "core/surface/surface.h"
 
@@ -29,6 +31,19 @@ struct ProjectionResult {
   bool converged = false;
   int iterations = 0;     // Newton steps taken
   double residual = 0.0;  // |F(point)|
+  // F and grad F at `point`, the projection's last evaluation: a caller that needs them where
+  // the vertex ends (ErrorPredictor::begin_step) need not evaluate them again.
+  double value = 0.0;
+  Vec3 gradient{Vec3::Zero()};
+};
+
+// F and grad F evaluated at `point` while the surface was in the state its owner numbered
+// `epoch` (0: none).
+struct PointEvaluation {
+  Vec3 point{Vec3::Zero()};
+  double value = 0.0;
+  Vec3 gradient{Vec3::Zero()};
+  std::uint64_t epoch = 0;
 };
 
 // Thread-safe (only const surface evaluations) and allocation-free.
