@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/vector_types.h"
+
 namespace dynamesh::test {
 
 struct PlyData {
@@ -81,6 +83,26 @@ inline PlyData read_ply(const std::string& path) {
   }
   EXPECT_TRUE(static_cast<bool>(in)) << "file ended early";
   return ply;
+}
+
+struct PlyMeasure {
+  double area = 0.0, volume = 0.0;
+};
+
+// Area and enclosed volume (divergence theorem) of a closed mesh read back from PLY, in one
+// pass; with `stretch`, of that mesh scaled by it along the world's axes (voxel-size tests
+// compare layers of volumes whose voxels differ by such a stretch).
+inline PlyMeasure measure_ply(const PlyData& ply, const Vec3& stretch = Vec3::Ones()) {
+  PlyMeasure m;
+  for (const auto& f : ply.faces) {
+    Vec3 p[3];
+    for (int i = 0; i < 3; ++i)
+      p[i] = stretch.cwiseProduct(
+          Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]));
+    m.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    m.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+  }
+  return m;
 }
 
 // The column of a vertex property (fails the test, returns -1, when absent).

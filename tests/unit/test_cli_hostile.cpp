@@ -3,7 +3,6 @@
 // Each run is under `timeout`, so a hang fails the test instead of stalling CI. Hostile
 // NIfTI files are made from a small synthetic volume (test_nifti_files.h).
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "child_cpu_time.h"
 #include "cli_runner.h"
 #include "test_nifti_files.h"
 
@@ -39,13 +39,6 @@ struct Outcome {
   double cpu_seconds = 0;  // user + system
 };
 
-double children_cpu_seconds() {
-  rusage u{};
-  ::getrusage(RUSAGE_CHILDREN, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 Outcome run(const std::vector<std::string>& args, int limit = kKillSeconds) {
   static const fs::path dir = test::scratch_dir("cli_hostile");
   const fs::path err = dir / "stderr.txt";
@@ -54,7 +47,7 @@ Outcome run(const std::vector<std::string>& args, int limit = kKillSeconds) {
   for (const std::string& a : args) command << " " << test::shell_quoted(a);
   command << " 2>" << err.string();
   Outcome r;
-  const double cpu_before = children_cpu_seconds();
+  const double cpu_before = test::children_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   FILE* pipe = ::popen(command.str().c_str(), "r");
   if (!pipe) return r;
@@ -63,7 +56,8 @@ Outcome run(const std::vector<std::string>& args, int limit = kKillSeconds) {
   while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
   const int raw = ::pclose(pipe);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.cpu_seconds = children_cpu_seconds() - cpu_before;  // pclose reaped the shell and its tree
+  r.cpu_seconds =
+      test::children_cpu_seconds() - cpu_before;  // pclose reaped the shell and its tree
   r.status = WIFEXITED(raw) && WEXITSTATUS(raw) != 137 ? WEXITSTATUS(raw) : -1;
   std::ifstream in(err);
   std::stringstream s;

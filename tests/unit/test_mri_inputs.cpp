@@ -92,12 +92,7 @@ TEST(MriInputs, DicomFolderWithoutOrWithTwoSeriesIsRefusedInOneLine) {
   EXPECT_EQ(temporary_conversions(), before);
 }
 
-struct Measured {
-  double area = 0.0, volume = 0.0;
-  double triangles = 0.0;
-};
-
-Measured layer(const std::string& name, const test::Args& extra) {
+test::PlyMeasure layer(const std::string& name, const test::Args& extra) {
   using test::operator+;
   const auto dir = test::cli_scratch("mri_inputs");
   const std::string mesh = (dir / (name + ".ply")).string();
@@ -109,23 +104,13 @@ Measured layer(const std::string& name, const test::Args& extra) {
   if (run.status != 0) return {};
   EXPECT_EQ(run.json["budget_hit"], false) << name;
   EXPECT_LE(run["max_sample_error"], 1.0 * 1.25 * 1.1) << name;  // T + eps (T = 1 mm, eps T/4)
-  Measured m;
-  m.triangles = run["triangles"];
-  const test::PlyData ply = test::read_ply(mesh);
-  for (const auto& f : ply.faces) {
-    Vec3 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]);
-    m.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    m.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
-  }
-  return m;
+  return test::measure_ply(test::read_ply(mesh));
 }
 
 TEST(MriInputs, SmallerClosingKeepsMoreOfTheSulci) {
   if (!std::filesystem::exists(kBrain)) GTEST_SKIP() << "mricron-data not installed";
-  const Measured closed = layer("closing_default", {});
-  const Measured open = layer("closing_2", {"--param", "closing=2"});
+  const test::PlyMeasure closed = layer("closing_default", {});
+  const test::PlyMeasure open = layer("closing_2", {"--param", "closing=2"});
   // Following the sulci: more area, less volume (the sulci are no longer filled).
   // (Measured: +3.3% area, -1.4% volume.)
   EXPECT_GT(open.area, 1.02 * closed.area) << open.area << " vs " << closed.area;

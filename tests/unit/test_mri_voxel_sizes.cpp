@@ -24,6 +24,7 @@
 #include <numbers>
 #include <random>
 
+#include "child_cpu_time.h"
 #include "cli_runner.h"
 #include "ply_reader.h"
 #include "test_nifti_files.h"
@@ -84,24 +85,8 @@ std::filesystem::path rescaled_brain(const std::filesystem::path& dir, const Vec
   return path;
 }
 
-struct Layer {
-  double area = 0.0, volume = 0.0;
-};
-
-// Area and enclosed volume (divergence theorem) of an exported closed mesh, in one pass; with
-// `stretch`, of that mesh scaled by it along the world's axes.
-Layer measure_ply(const test::PlyData& ply, const Vec3& stretch = Vec3::Ones()) {
-  Layer layer;
-  for (const auto& f : ply.faces) {
-    Vec3 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = stretch.cwiseProduct(
-          Vec3(ply.vertices[f[i]][0], ply.vertices[f[i]][1], ply.vertices[f[i]][2]));
-    layer.area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    layer.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
-  }
-  return layer;
-}
+using Layer = test::PlyMeasure;
+using test::measure_ply;
 
 // The layer at depth 0 of `volume` (plus `extra` options), judged closed and embedded;
 // `threshold` is the T the run uses (the scene's 0.5 mm unless `extra` sets another).
@@ -421,22 +406,15 @@ double mean_distance(const test::PlyData& from, const test::PlyData& to) {
 // whole run is held to 30 s of CPU time (all threads; 6-7 s measured), which a loaded
 // machine does not inflate the way it inflates the wall clock (preparation_seconds: 35 s
 // wall at load 25 for ~3.4 s of CPU).
-double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
 TEST(MriVoxelSizes, HeadWithSkullGivesTheStrippedBrainsLayer) {
   if (!std::filesystem::exists(kHead) || !std::filesystem::exists(kBrain))
     GTEST_SKIP() << "mricron-data not installed";
   const test::Args deep{"--param", "depth_max=3", "--t0", "1"};
   double preparation = 0.0;
   const Layer brain = layer_of(kBrain, "ch2bet_3mm", deep);
-  const double cpu_before = children_cpu_seconds();
+  const double cpu_before = test::children_cpu_seconds();
   const Layer head = layer_of(kHead, "ch2_3mm", deep, &preparation);
-  const double cpu = children_cpu_seconds() - cpu_before;
+  const double cpu = test::children_cpu_seconds() - cpu_before;
   ASSERT_GT(brain.area, 0.0);
   ASSERT_GT(head.area, 0.0);
   EXPECT_NEAR(head.area / brain.area, 1.0, 0.10) << head.area << " vs " << brain.area;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "test_render_scratch.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -34,15 +35,13 @@ struct Outcome {
 
 Outcome viewer(const std::string& options, const fs::path& dir, const std::string& name,
                const std::string& environment = "") {
-  const fs::path log = dir / (name + ".txt");
-  const std::string command = environment + "xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(DYNAMESH_VIEWER) + "' --width 900 --height 600 " +
-                              options + " > '" + log.string() + "' 2>&1";
+  const test::XvfbRun run =
+      test::run_under_xvfb((environment.empty() ? "" : "env " + environment) +
+                               test::viewer_command("--width 900 --height 600 " + options),
+                           dir / (name + ".txt"));
   Outcome r;
-  const int raw = std::system(command.c_str());
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(log);
-  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  r.status = run.status;
+  r.output = run.output;
   std::smatch m;
   if (std::regex_search(r.output, m, std::regex("(\\d+) frames in [0-9.]+ s \\((\\d+) triangles")))
     r.frames = std::stol(m[1]), r.triangles = std::stol(m[2]);
@@ -169,11 +168,8 @@ TEST(ViewerContract, EscapeQuitsAndSaves) {
                         << "done\n"
                         << "if kill -0 $pid 2>/dev/null; then kill $pid; exit 9; fi\n"
                         << "wait $pid\n";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' sh '" + script.string() +
-                              "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0)
-      << raw << ": " << test::slurp_text(dir / "log.txt");
+  const test::XvfbRun run = test::run_script_under_xvfb(script, dir / "log.txt");
+  EXPECT_EQ(run.status, 0) << run.output;
   const std::string saved = test::slurp_text(state);
   EXPECT_NE(saved.find("scene = sinc"), std::string::npos) << saved;
 }
@@ -246,11 +242,9 @@ TEST(ViewerContract, SlidersTakeEffect) {
       << "for i in $(seq 60); do kill -0 $pid 2>/dev/null || break; hold Escape; sleep 0.2; done\n"
       << "if kill -0 $pid 2>/dev/null; then kill $pid; exit 9; fi\n"
       << "wait $pid\n";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x900x24' sh '" + script.string() +
-                              "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0)
-      << raw << ": " << test::slurp_text(dir / "log.txt");
+  const test::XvfbRun run =
+      test::run_script_under_xvfb(script, dir / "log.txt", {.screen = "1280x900x24"});
+  ASSERT_EQ(run.status, 0) << run.output;
   const auto read = [&](const char* name) {
     return test::slurp_text(report.string() + "." + name);
   };
@@ -463,9 +457,9 @@ TEST(ViewerContract, BadValuesExitTwoWithOneLineNamingTheOption) {
   for (const auto& [options, named] : cases) {
     SCOPED_TRACE(options);
     const fs::path err = dir / "err.txt";
-    const int raw = std::system(("'" + std::string(DYNAMESH_VIEWER) + "' " + options +
-                                 " > /dev/null 2> '" + err.string() + "'")
-                                    .c_str());
+    const int raw = std::system(
+        test::viewer_command(std::string(options) + " > /dev/null 2> '" + err.string() + "'")
+            .c_str());
     EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << raw;
     const std::string text = test::slurp_text(err);
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
@@ -484,10 +478,7 @@ TEST(ViewerOptions, ParameterAndTimeChooseTheSurface) {
   EXPECT_GT(reported(crest, "triangles"), 4 * reported(later, "triangles")) << crest << later;
   // --help: exit 0, every option on its usage text.
   const fs::path help = dir / "help.txt";
-  ASSERT_EQ(
-      std::system(
-          ("'" + std::string(DYNAMESH_VIEWER) + "' --help > '" + help.string() + "'").c_str()),
-      0);
+  ASSERT_EQ(std::system(test::viewer_command("--help > '" + help.string() + "'").c_str()), 0);
   const std::string usage = test::slurp_text(help);
   for (const char* option :
        {"--scene",        "--param",       "--volume",        "--t0",      "--keyframes",
@@ -501,7 +492,7 @@ TEST(ViewerOptions, ParameterAndTimeChooseTheSurface) {
 
 TEST(ViewerContract, VersionIsPrinted) {
   const std::string out = (test::render_scratch("viewer_version") / "v.txt").string();
-  ASSERT_EQ(std::system(("'" + std::string(DYNAMESH_VIEWER) + "' --version > " + out).c_str()), 0);
+  ASSERT_EQ(std::system(test::viewer_command("--version > " + out).c_str()), 0);
   std::ifstream in(out);
   std::string line;
   std::getline(in, line);

@@ -22,6 +22,7 @@
 #include "app/viewer/viewer_state.h"
 #include "test_render_scratch.h"
 #include "test_render_step_request.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -99,21 +100,10 @@ TEST(ViewerHostile, SavedValuesAreCheckedLikeCommandLineValues) {
   EXPECT_EQ(fresh.controls.threshold, 0.01);
 }
 
-struct ViewerRun {
-  int status = -1;
-  std::string output;
-};
+using ViewerRun = test::XvfbRun;
 
 ViewerRun run_viewer(const std::string& options, const fs::path& log) {
-  const std::string command = "timeout -s KILL 60 xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(DYNAMESH_VIEWER) + "' " + options + " > '" +
-                              log.string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
-  ViewerRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(log);
-  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return r;
+  return test::run_under_xvfb(test::viewer_command(options), log, {.kill_after_seconds = 60});
 }
 
 TEST(ViewerHostile, StartsWhateverItsSavedStateHolds) {
@@ -165,14 +155,14 @@ TEST(ViewerHostile, ASignalEndsAScriptedRunWithItsStatus) {
     const fs::path pid_file = dir / "pid", movie = dir / "movie.mp4";
     // sh records its pid, then becomes the viewer: the signal goes to the viewer itself.
     const std::string command =
-        "timeout -s KILL 60 xvfb-run -a -s '-screen 0 1280x800x24' sh -c 'echo $$ > \"" +
-        pid_file.string() + "\"; exec \"" + DYNAMESH_VIEWER +
+        "sh -c 'echo $$ > \"" + pid_file.string() + "\"; exec \"" + DYNAMESH_VIEWER +
         "\" --fresh --width 400 --height 300 --scene sinc --play --run-for 50 --record \"" +
         movie.string() + "\" --screenshot \"" + (dir / "shot.png").string() + "\" --frame-log \"" +
-        (dir / "frames.csv").string() + "\"' > \"" + (dir / "log.txt").string() + "\" 2>&1";
+        (dir / "frames.csv").string() + "\"'";
     std::thread viewer([&] {
-      const int raw = std::system(command.c_str());
-      std::ofstream(dir / "status") << (WIFEXITED(raw) ? WEXITSTATUS(raw) : -1);
+      const test::XvfbRun run =
+          test::run_under_xvfb(command, dir / "log.txt", {.kill_after_seconds = 60});
+      std::ofstream(dir / "status") << run.status;
     });
     // Signalled once frames are being recorded (into movie.mp4.partial until it is done).
     const fs::path partial = movie.string() + ".partial";

@@ -6,7 +6,6 @@
 //   - a click in the axial slice moves the point to the voxel clicked.
 #include <gtest/gtest.h>
 #include <nifti1.h>
-#include <sys/resource.h>
 #include <znzlib.h>
 
 #include <chrono>
@@ -22,7 +21,9 @@
 
 #include <Eigen/Dense>
 
+#include "child_cpu_time.h"
 #include "test_render_scratch.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -100,28 +101,20 @@ Eigen::Vector3d reported_vector(const std::string& report, const std::string& ke
   return v;
 }
 
-double child_cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_CHILDREN, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 TEST(ViewerMri, ShowsTheFirstAdaptedFrameWithin10Seconds) {
   if (!fs::exists(kColin27)) GTEST_SKIP() << "mricron-data not installed";
   const fs::path dir = test::render_scratch("viewer_mri_first");
   const fs::path shot = dir / "first.png";
-  const double cpu_before = child_cpu_seconds();
+  const double cpu_before = test::children_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(DYNAMESH_VIEWER) +
-                              "' --fresh --scene mri --color intensity --frames 1 --screenshot '" +
-                              shot.string() + "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
+  const test::XvfbRun run = test::run_under_xvfb(
+      test::viewer_command("--fresh --scene mri --color intensity --frames 1 --screenshot '" +
+                           shot.string() + "'"),
+      dir / "log.txt");
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double cpu = child_cpu_seconds() - cpu_before;
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << test::slurp_text(dir / "log.txt");
+  const double cpu = test::children_cpu_seconds() - cpu_before;
+  ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_TRUE(fs::exists(shot));
   double load = 0.0;
   std::ifstream("/proc/loadavg") >> load;
@@ -178,11 +171,9 @@ TEST(ViewerMri, PickingAndSlicesReportWhatTheScanSays) {
       << "for i in $(seq 40); do kill -0 $pid 2>/dev/null || break; xdotool keydown Escape; "
          "sleep 0.3; xdotool keyup Escape; sleep 0.2; done\n"
       << "kill $pid 2>/dev/null; wait $pid\n";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x900x24' sh '" + script.string() +
-                              "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0)
-      << raw << ": " << test::slurp_text(dir / "log.txt");
+  const test::XvfbRun run =
+      test::run_script_under_xvfb(script, dir / "log.txt", {.screen = "1280x900x24"});
+  ASSERT_EQ(run.status, 0) << run.output;
 
   const Volume t1 = read_volume(kColin27), aal = read_volume(kAal);
   std::map<int, std::string> names;

@@ -26,6 +26,7 @@
 
 #include "test_mri_ball.h"
 #include "test_render_scratch.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -174,11 +175,9 @@ TEST(ViewerOpenScan, PathFieldDropAndDicomFolderLoadOnTheWorker) {
       << "for i in $(seq 40); do kill -0 $pid 2>/dev/null || break; hold Escape; sleep 0.2; "
          "done\n"
       << "kill $pid 2>/dev/null; wait $pid\n";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x900x24' sh '" + script.string() +
-                              "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  const int raw = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0)
-      << raw << ": " << test::slurp_text(dir / "log.txt");
+  const test::XvfbRun run =
+      test::run_script_under_xvfb(script, dir / "log.txt", {.screen = "1280x900x24"});
+  ASSERT_EQ(run.status, 0) << run.output;
   const auto read = [&](const std::string& name) {
     return test::slurp_text(report.string() + "." + name);
   };

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "test_render_scratch.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -78,15 +79,14 @@ fs::path frame(const fs::path& frames, int k) {
 
 // Runs the viewer with `options`, one PNG per step in dir/run_frames; returns its output.
 std::string record(const fs::path& dir, const std::string& options) {
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' env PATH=/nonexistent '" +
-                              std::string(DYNAMESH_VIEWER) + "' --fresh " + options + " --width " +
-                              std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
-                              " --record '" + (dir / "run.mp4").string() + "' > '" +
-                              (dir / "log.txt").string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  const std::string log = test::slurp_text(dir / "log.txt");
-  EXPECT_EQ(status, 0) << log;
-  return log;
+  const test::XvfbRun run = test::run_under_xvfb(
+      "env PATH=/nonexistent " +
+          test::viewer_command("--fresh " + options + " --width " + std::to_string(kWidth) +
+                               " --height " + std::to_string(kHeight) + " --record '" +
+                               (dir / "run.mp4").string() + "'"),
+      dir / "log.txt");
+  EXPECT_EQ(run.status, 0) << run.output;
+  return run.output;
 }
 
 int events_reported(const std::string& log) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "test_render_scratch.h"
+#include "xvfb_run.h"
 
 namespace dynamesh {
 namespace {
@@ -34,12 +35,11 @@ TEST(ViewerUnderXvfb, ScriptedRunWritesScreenshotWithPanelAndMesh) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path shot = dir / "viewer.png";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(DYNAMESH_VIEWER) +
-                              "' --scene sphere --frames 5 --width 1000 --height 640 "
-                              "--screenshot '" +
-                              shot.string() + "' > '" + (dir / "log.txt").string() + "' 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << "see " << (dir / "log.txt");
+  const test::XvfbRun run = test::run_under_xvfb(
+      test::viewer_command("--scene sphere --frames 5 --width 1000 --height 640 --screenshot '" +
+                           shot.string() + "'"),
+      dir / "log.txt");
+  ASSERT_EQ(run.status, 0) << run.output;
 
   int w = 0, h = 0, n = 0;
   stbi_uc* pixels = stbi_load(shot.c_str(), &w, &h, &n, 3);
@@ -72,24 +72,17 @@ TEST(ViewerUnderXvfb, ScriptedRunWritesScreenshotWithPanelAndMesh) {
   stbi_image_free(pixels);
 }
 
-// The whole output of a command (stdout and stderr), and its exit status.
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
+using Outcome = test::XvfbRun;
 
+// A command without a display (ffprobe), its output to `log`.
 Outcome run(const std::string& command, const fs::path& log) {
-  Outcome r;
-  r.status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-  std::ifstream in(log);
-  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return r;
+  const int raw = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::slurp_text(log)};
 }
 
-// The viewer under a fresh virtual display, with `options`.
-std::string viewer(const std::string& options, const std::string& env = "") {
-  return "xvfb-run -a -s '-screen 0 1280x800x24' " + env + " '" + std::string(DYNAMESH_VIEWER) +
-         "' " + options;
+// The viewer under a fresh virtual display, with `options` (after `env`, e.g. "env PATH=...").
+Outcome run_viewer(const std::string& options, const fs::path& log, const std::string& env = "") {
+  return test::run_under_xvfb(env + " " + test::viewer_command(options), log);
 }
 
 TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
@@ -97,8 +90,8 @@ TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
   ASSERT_TRUE(on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
   const fs::path dir = test::render_scratch("viewer_record");
   const fs::path video = dir / "run.mp4";
-  const Outcome r = run(
-      viewer("--scene sinc --frames 7 --width 640 --height 480 --record '" + video.string() + "'"),
+  const Outcome r = run_viewer(
+      "--scene sinc --frames 7 --width 640 --height 480 --record '" + video.string() + "'",
       dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("recorded 7 frames"), std::string::npos) << r.output;
@@ -118,10 +111,9 @@ TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_record_png");
   // A PATH with no ffmpeg on it (the viewer needs nothing else from PATH).
-  const Outcome r = run(viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
+  const Outcome r = run_viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
                                    (dir / "run.mp4").string() + "'",
-                               "env PATH=/nonexistent"),
-                        dir / "log.txt");
+                               dir / "log.txt", "env PATH=/nonexistent");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir / "run.mp4"));
   const fs::path frames = dir / "run_frames";
@@ -144,11 +136,11 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
   const fs::path dir = test::render_scratch("viewer_settings_runs");
   const fs::path state = dir / "config" / "viewer.conf";
   const std::string shot = " --screenshot '" + (dir / "shot.png").string() + "'";
-  const Outcome first = run(viewer("--state '" + state.string() +
-                                   "' --scene sinc --param beta=10 --threshold 0.03 --frames 1 "
-                                   "--width 700 --height 500" +
-                                   shot),
-                            dir / "first.txt");
+  const Outcome first = run_viewer("--state '" + state.string() +
+                                       "' --scene sinc --param beta=10 --threshold 0.03 --frames 1 "
+                                       "--width 700 --height 500" +
+                                       shot,
+                                   dir / "first.txt");
   ASSERT_EQ(first.status, 0) << first.output;
   std::ifstream in(state);
   const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -158,7 +150,7 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
 
   // The second run names no scene: it continues with the saved one and its window size.
   const Outcome second =
-      run(viewer("--state '" + state.string() + "' --frames 1" + shot), dir / "second.txt");
+      run_viewer("--state '" + state.string() + "' --frames 1" + shot, dir / "second.txt");
   ASSERT_EQ(second.status, 0) << second.output;
   EXPECT_NE(second.output.find("scene sinc"), std::string::npos) << second.output;
   int w = 0, h = 0, n = 0;
@@ -170,10 +162,10 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
 TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_bad_parameter");
-  const Outcome r = run(viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
-                               (dir / "shot.png").string() + "'"),
-                        dir / "log.txt");
-  EXPECT_EQ(WEXITSTATUS(r.status), 2) << r.output;  // scripted: could not show what was asked
+  const Outcome r = run_viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
+                                   (dir / "shot.png").string() + "'",
+                               dir / "log.txt");
+  EXPECT_EQ(r.status, 2) << r.output;  // scripted: could not show what was asked
   EXPECT_NE(r.output.find("error shown: sinc: no parameter 'no_such'"), std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(dir / "shot.png"));
@@ -199,11 +191,12 @@ int red_text_pixels(const fs::path& png) {
 TEST(ViewerUnderXvfb, TypedFormulaRunsWithItsPanel) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_expr");
-  const Outcome r = run(viewer("--scene expr --implicit 'x^2 + y^2/(1+0.5*sin(2*pi*t)) + z^2 - 1' "
-                               "--bounds -2,-2,-2,2,2,2 --threshold 0.02 --frames 4 --width 800 "
-                               "--height 600 --screenshot '" +
-                               (dir / "shot.png").string() + "'"),
-                        dir / "log.txt");
+  const Outcome r = run_viewer(
+      "--scene expr --implicit 'x^2 + y^2/(1+0.5*sin(2*pi*t)) + z^2 - 1' "
+      "--bounds -2,-2,-2,2,2,2 --threshold 0.02 --frames 4 --width 800 "
+      "--height 600 --screenshot '" +
+          (dir / "shot.png").string() + "'",
+      dir / "log.txt");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("scene expr, last step shown 3"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("error shown"), std::string::npos) << r.output;
@@ -220,12 +213,13 @@ TEST(ViewerUnderXvfb, BrokenFormulaShowsItsErrorInRedInsteadOfCrashing) {
   ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
   const fs::path dir = test::render_scratch("viewer_expr_broken");
   for (const char* formula : {"sqrt(x^2+y^2+z^2 - 1", "x^2 + y^2 + z^2 + 1"}) {
-    const Outcome r = run(viewer(std::string("--scene expr --implicit '") + formula +
-                                 "' --bounds -2,-2,-2,2,2,2 --frames 2 --width 800 --height 600 "
-                                 "--screenshot '" +
-                                 (dir / "shot.png").string() + "'"),
-                          dir / "log.txt");
-    EXPECT_EQ(WEXITSTATUS(r.status), 2) << r.output;  // scripted: could not show what was asked
+    const Outcome r =
+        run_viewer(std::string("--scene expr --implicit '") + formula +
+                       "' --bounds -2,-2,-2,2,2,2 --frames 2 --width 800 --height 600 "
+                       "--screenshot '" +
+                       (dir / "shot.png").string() + "'",
+                   dir / "log.txt");
+    EXPECT_EQ(r.status, 2) << r.output;  // scripted: could not show what was asked
     EXPECT_NE(r.output.find("error shown: implicit formula"), std::string::npos) << r.output;
     EXPECT_GT(red_text_pixels(dir / "shot.png"), 100) << formula << ": no red message in the panel";
   }
@@ -236,7 +230,7 @@ TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
   const fs::path dir = test::render_scratch("viewer_uploads");
   // Turning the view for a second without playing: many frames, one upload.
   const Outcome still =
-      run(viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300"), dir / "still.txt");
+      run_viewer("--scene sinc --run-for 1 --orbit --width 400 --height 300", dir / "still.txt");
   ASSERT_EQ(still.status, 0) << still.output;
   EXPECT_NE(still.output.find("uploads: 1 full, 0 positions only, 1 colour"), std::string::npos)
       << still.output;
@@ -247,7 +241,7 @@ TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
 
   // Playing: one geometry upload per step shown.
   const Outcome playing =
-      run(viewer("--scene sinc --play --run-for 2 --width 400 --height 300"), dir / "playing.txt");
+      run_viewer("--scene sinc --play --run-for 2 --width 400 --height 300", dir / "playing.txt");
   ASSERT_EQ(playing.status, 0) << playing.output;
   int full = 0, positions = 0, colour = 0;
   unsigned steps = 0;
@@ -269,8 +263,8 @@ TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
 TEST(ViewerUnderXvfb, WithoutDisplayExitsTwoNamingTheBatchCommand) {
   const fs::path log = fs::path(DYNAMESH_BINARY_DIR) / "test_output" / "viewer_nodisplay.txt";
   fs::create_directories(log.parent_path());
-  const std::string command = "env -u DISPLAY -u WAYLAND_DISPLAY '" + std::string(DYNAMESH_VIEWER) +
-                              "' > '" + log.string() + "' 2>&1";
+  const std::string command =
+      "env -u DISPLAY -u WAYLAND_DISPLAY " + test::viewer_command("> '" + log.string() + "' 2>&1");
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
@@ -284,8 +278,7 @@ TEST(ViewerUnderXvfb, WithoutDisplayExitsTwoNamingTheBatchCommand) {
 }
 
 TEST(ViewerUnderXvfb, BadOptionExitsTwo) {
-  const int status = std::system(
-      ("'" + std::string(DYNAMESH_VIEWER) + "' --no-such-option >/dev/null 2>&1").c_str());
+  const int status = std::system(test::viewer_command("--no-such-option >/dev/null 2>&1").c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
 }

@@ -24,6 +24,24 @@ bool inside(const VoxelGrid& g, const Vec3& c) {
   return true;
 }
 
+// Calls visit(i, j, k, c) for every voxel (i, j, k) of `target` whose centre lies inside
+// `source`, c being that centre in `source`'s index space: the grid walk both resamplers
+// share (they differ only in how they read the source there).
+template <class Visit>
+void for_each_covered_voxel(const VoxelGrid& source, const VoxelGrid& target, Visit&& visit) {
+  Mat3 a;
+  Vec3 b;
+  index_map(source, target, a, b);
+  const int nk = target.dims[2];
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j < target.dims[1]; ++j)
+      for (int i = 0; i < target.dims[0]; ++i) {
+        const Vec3 c = a * Vec3(i, j, k) + b;
+        if (inside(source, c)) visit(i, j, k, c);
+      }
+}
+
 }  // namespace
 
 bool has_orthogonal_axes(const VoxelGrid& grid) {
@@ -49,37 +67,20 @@ VoxelGrid orthogonal_grid_around(const VoxelGrid& grid) {
 ScalarVolume resampled(const ScalarVolume& volume, const VoxelGrid& target, float outside) {
   ScalarVolume out(target, outside);
   const TrilinearSampler sampler(volume.grid);
-  Mat3 a;
-  Vec3 b;
-  index_map(volume.grid, target, a, b);
-  const int nk = target.dims[2];
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nk; ++k)
-    for (int j = 0; j < target.dims[1]; ++j)
-      for (int i = 0; i < target.dims[0]; ++i) {
-        if (!inside(volume.grid, a * Vec3(i, j, k) + b)) continue;
-        out.at(i, j, k) = static_cast<float>(sampler(volume, target.to_world(Vec3(i, j, k))));
-      }
+  for_each_covered_voxel(volume.grid, target, [&](int i, int j, int k, const Vec3&) {
+    out.at(i, j, k) = static_cast<float>(sampler(volume, target.to_world(Vec3(i, j, k))));
+  });
   return out;
 }
 
 MaskVolume resampled(const MaskVolume& mask, const VoxelGrid& target) {
   MaskVolume out(target, 0);
-  Mat3 a;
-  Vec3 b;
-  index_map(mask.grid, target, a, b);
-  const int nk = target.dims[2];
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nk; ++k)
-    for (int j = 0; j < target.dims[1]; ++j)
-      for (int i = 0; i < target.dims[0]; ++i) {
-        const Vec3 c = a * Vec3(i, j, k) + b;
-        if (!inside(mask.grid, c)) continue;
-        out.at(i, j, k) =
-            mask.at(std::clamp(static_cast<int>(std::lround(c[0])), 0, mask.grid.dims[0] - 1),
-                    std::clamp(static_cast<int>(std::lround(c[1])), 0, mask.grid.dims[1] - 1),
-                    std::clamp(static_cast<int>(std::lround(c[2])), 0, mask.grid.dims[2] - 1));
-      }
+  const auto nearest = [&](const Vec3& c, int axis) {
+    return std::clamp(static_cast<int>(std::lround(c[axis])), 0, mask.grid.dims[axis] - 1);
+  };
+  for_each_covered_voxel(mask.grid, target, [&](int i, int j, int k, const Vec3& c) {
+    out.at(i, j, k) = mask.at(nearest(c, 0), nearest(c, 1), nearest(c, 2));
+  });
   return out;
 }
 

@@ -1,0 +1,59 @@
+// The real viewer (or a script driving it with xdotool) under a fresh virtual display, for the
+// tests that judge what a user would see: xvfb-run from Debian's xvfb, whose package is in
+// scripts/debian-packages.txt, so these tests fail rather than skip where it is missing.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "test_render_scratch.h"
+
+namespace dynamesh::test {
+
+struct XvfbOptions {
+  std::string screen = "1280x800x24";  // the virtual screen, WxHxDepth
+  int kill_after_seconds = 0;          // > 0: `timeout -s KILL` ends a hang (status 137)
+};
+
+struct XvfbRun {
+  int status = -1;     // the command's exit status; -1 when a signal ended it
+  std::string output;  // its stdout and stderr, as written to the log
+};
+
+// Runs the shell command line `command` under its own display; its output goes to `log`.
+inline XvfbRun run_under_xvfb(const std::string& command, const std::filesystem::path& log,
+                              const XvfbOptions& options = {}) {
+  const std::string timeout =
+      options.kill_after_seconds > 0
+          ? "timeout -s KILL " + std::to_string(options.kill_after_seconds) + " "
+          : "";
+  const int raw = std::system((timeout + "xvfb-run -a -s '-screen 0 " + options.screen + "' " +
+                               command + " > '" + log.string() + "' 2>&1")
+                                  .c_str());
+  XvfbRun run;
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  run.output = slurp_text(log);
+  return run;
+}
+
+// A shell script under its own display (the scripted-input tests).
+inline XvfbRun run_script_under_xvfb(const std::filesystem::path& script,
+                                     const std::filesystem::path& log,
+                                     const XvfbOptions& options = {}) {
+  return run_under_xvfb("sh '" + script.string() + "'", log, options);
+}
+
+// The viewer's command line with `options`. (Appended piece by piece: GCC 12 reports a false
+// -Wrestrict for "'" + std::string(...) once this is inlined.)
+inline std::string viewer_command(const std::string& options) {
+  std::string command = "'";
+  command += DYNAMESH_VIEWER;
+  command += "' ";
+  command += options;
+  return command;
+}
+
+}  // namespace dynamesh::test
