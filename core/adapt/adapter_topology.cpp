@@ -1,6 +1,7 @@
 // The adapter's topology hooks (issue 16): kept apart from the per-step phases in adapter.cpp.
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -101,16 +102,16 @@ bool faces_outwards(const Mesh48& mesh, const ImplicitSurface& surface) {
 std::optional<Mesh48> Adapter::mid_run_base_mesh() {
   // The surface's own base mesh first (a contour of F on its grid). Right at an event F has a
   // double cone (grad F = 0 on the surface) and the contour's triangles at the cone's tip can
-  // face against grad F: the surface refuses such a base (check_orientation). That is a fact
-  // about where the grid's points fall, not about the surface: contours on slightly different
-  // grids (other cell counts along the longest side, so that no grid point keeps its place
-  // near the tip) are tried before giving up. Giving up keeps the current mesh: the run goes
-  // on, and the monitor asks again at the next sub-step, when the neck or the tips have moved.
-  std::string why;
+  // face against grad F: the surface refuses such a base (check_orientation). That is often a
+  // fact about where the grid's points fall, not about the surface: contours on slightly
+  // different grids (other cell counts along the longest side, so that no grid point keeps its
+  // place near the tip) are tried. When every grid folds, the surface is one no mesh can
+  // follow (ripples finer than the grid: CliHostile), and the surface's refusal stands.
+  std::exception_ptr refusal;
   try {
     return surface_.base_mesh();
-  } catch (const std::invalid_argument& e) {
-    why = e.what();
+  } catch (const std::invalid_argument&) {
+    refusal = std::current_exception();
   }
   if (const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_)) {
     for (const int cells : {25, 23, 27, 21, 29, 20}) {
@@ -123,9 +124,7 @@ std::optional<Mesh48> Adapter::mid_run_base_mesh() {
       }
     }
   }
-  stats_.repair_refusals.push_back(
-      "no global re-base either (the mesh is kept, the run goes on): " + why);
-  return std::nullopt;
+  std::rethrow_exception(refusal);
 }
 
 void Adapter::rebuild_if_folded() {
