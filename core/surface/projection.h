@@ -24,7 +24,21 @@ struct ProjectionOptions {
   // small (near a medial axis, between nearly touching sheets) a Newton step can jump across
   // the scene; callers that know the local scale (a split edge's length) bound it here.
   double max_step = 0.0;
+  // Beyond this length (0: never) a Newton step is not trusted to the linear model: next to a
+  // critical point of F, where |grad F| -> 0, -F grad F / |grad F|^2 grows without bound while
+  // the surface moves a finite distance (a new neck widens, a tip recedes, as sqrt(2 |F| /
+  // |lambda|)). There the step is the quadratic model's (newton_step_bounded()). Callers set
+  // it to the local edge length: within it a long step cannot turn a face over.
+  double quadratic_beyond = 0.0;
 };
+
+// The safeguarded Newton step from x (F = f, grad F = g there, g nonzero): -f g / |g|^2, or,
+// when that is longer than options.quadratic_beyond, the nearest root of F's quadratic model
+// along -sign(f) grad F, else (no root that way) along the Hessian's eigenvector whose eigenvalue
+// has the sign that brings F to zero (sqrt(2 |f| / |lambda|)), else the Newton step shortened
+// to quadratic_beyond. Never longer than the Newton step.
+Vec3 newton_step_bounded(const ImplicitSurface& surface, const Vec3& x, double f, const Vec3& g,
+                         const ProjectionOptions& options);
 
 struct ProjectionResult {
   Vec3 point{Vec3::Zero()};  // the last iterate (the start point if no step was taken)
