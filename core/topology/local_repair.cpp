@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include "core/surface/projection.h"
 #include "core/topology/marching_tetrahedra.h"
@@ -174,6 +175,19 @@ Vec3 centroid(const std::vector<Vec3>& positions, const Loop& loop) {
   return c / static_cast<double>(loop.size());
 }
 
+// Indices into a and b of the closest pair of vertices between the two loops: where zipping starts.
+std::pair<std::size_t, std::size_t> nearest_pair(const std::vector<Vec3>& positions, const Loop& a,
+                                                 const Loop& b) {
+  std::size_t i0 = 0, j0 = 0;
+  double nearest = HUGE_VAL;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
+      if (d < nearest) nearest = d, i0 = i, j0 = j;
+    }
+  return {i0, j0};
+}
+
 // Zips the border loop `a` (halfedges a_k -> a_k+1 of remaining faces) to the patch loop `b`
 // (halfedges b_k -> b_k+1 of patch triangles): the strip holds every a_k+1 -> a_k and
 // b_k+1 -> b_k, walking `a` backwards and `b` forwards (the same way round) from their
@@ -183,13 +197,8 @@ Vec3 centroid(const std::vector<Vec3>& positions, const Loop& loop) {
 void zip(const std::vector<Vec3>& positions, const Loop& a, const Loop& b,
          std::vector<Triangle>& out) {
   const std::size_t na = a.size(), nb = b.size();
-  std::size_t i0 = 0, j0 = 0;
-  double best = HUGE_VAL;
-  for (std::size_t i = 0; i < na; ++i)
-    for (std::size_t j = 0; j < nb; ++j) {
-      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
-      if (d < best) best = d, i0 = i, j0 = j;
-    }
+  const auto [first_a, first_b] = nearest_pair(positions, a, b);
+  const std::size_t i0 = first_a, j0 = first_b;
   const auto A = [&](std::size_t s) { return a[(i0 + na - s % na) % na]; };  // backwards
   const auto B = [&](std::size_t s) { return b[(j0 + s) % nb]; };
   // How far round each loop each vertex is, as a fraction of the whole turn about the border
@@ -325,13 +334,8 @@ double facing(const ImplicitSurface& surface, const std::vector<Vec3>& p, const 
 double zip_facing(const ImplicitSurface& surface, const std::vector<Vec3>& positions, const Loop& a,
                   const Loop& b, std::vector<Triangle>& out) {
   const std::size_t na = a.size(), nb = b.size();
-  std::size_t i0 = 0, j0 = 0;
-  double nearest = HUGE_VAL;
-  for (std::size_t i = 0; i < na; ++i)
-    for (std::size_t j = 0; j < nb; ++j) {
-      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
-      if (d < nearest) nearest = d, i0 = i, j0 = j;
-    }
+  const auto [first_a, first_b] = nearest_pair(positions, a, b);
+  const std::size_t i0 = first_a, j0 = first_b;
   const auto A = [&](std::size_t s) { return a[(i0 + na - s % na) % na]; };  // backwards
   const auto B = [&](std::size_t s) { return b[(j0 + s) % nb]; };
   struct Best {

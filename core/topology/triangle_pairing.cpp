@@ -171,6 +171,14 @@ std::int64_t pass_on(std::vector<Vec3>& positions, std::vector<Triangle>& triang
     partner[x] = y;
     partner[y] = x;
   };
+  // g, next's old partner, is paired with whichever new triangle it shares an edge with:
+  // `on_ad` (the one on edge a-d) or next; the other is the new single one, returned.
+  const auto hand_over = [&](std::uint32_t on_ad) -> std::int64_t {
+    const std::uint32_t kept = g_on_ad ? on_ad : next, left = g_on_ad ? next : on_ad;
+    pair(kept, g);
+    partner[left] = -1;
+    return left;
+  };
 
   // A flip keeps the count; taken when it makes no edge twice and no worse angle than 20
   // degrees or the quad had.
@@ -185,14 +193,7 @@ std::int64_t pass_on(std::vector<Vec3>& positions, std::vector<Triangle>& triang
     triangles[single] = t1;
     triangles[next] = t2;
     ++out.flips;
-    if (g_on_ad) {
-      pair(single, g);
-      partner[next] = -1;
-      return next;
-    }
-    pair(next, g);
-    partner[single] = -1;
-    return single;
+    return hand_over(single);
   }
 
   const auto m = static_cast<std::uint32_t>(positions.size());
@@ -212,14 +213,7 @@ std::int64_t pass_on(std::vector<Vec3>& positions, std::vector<Triangle>& triang
   partner.resize(triangles.size(), -1);
   ++out.splits;
   pair(single, Q);
-  if (g_on_ad) {
-    pair(W, g);
-    partner[next] = -1;
-    return next;
-  }
-  pair(next, g);
-  partner[W] = -1;
-  return W;
+  return hand_over(W);
 }
 
 }  // namespace
