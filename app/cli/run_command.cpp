@@ -188,7 +188,11 @@ void log_topology(std::ostream& log, const StepStats& s) {
         << s.repair_spacing << "; the other vertices kept)\n";
   if (s.rebuilt)
     log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
-        << std::setprecision(4) << s.time << "; no vertex survives a rebuild)\n";
+        << std::setprecision(4) << s.time << "; no vertex survives a rebuild"
+        << (s.folds_repaired > 0 ? "; " + std::to_string(s.folds_repaired) +
+                                       " faces were left folded by the correction"
+                                 : std::string())
+        << ")\n";
   log.unsetf(std::ios::floatfield);
 }
 

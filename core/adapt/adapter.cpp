@@ -10,6 +10,7 @@
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/surface/projection.h"
 #include "core/topology/topology_events.h"
 
 namespace dynamesh {
@@ -72,7 +73,10 @@ class Adapter::Tracker final : public MeshListener {
     if (!probe_.project_split_vertex(mesh, change)) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
     for (int h = 0; h < change.count; ++h)
-      for (Face f : change.halves[h].children) touch(f);
+      for (Face f : change.halves[h].children) {
+        touch(f);
+        if (recording_ring_changes) ring_changed(mesh, f);
+      }
     ++vertices_created;
   }
   void after_weld(Mesh48& mesh, const DiamondChange& change) override {
@@ -80,7 +84,13 @@ class Adapter::Tracker final : public MeshListener {
     for (int h = 0; h < change.count; ++h) {
       touch(change.halves[h].children[0]);
       ++stamp[change.halves[h].children[1].idx];
+      if (recording_ring_changes) ring_changed(mesh, change.halves[h].children[0]);
     }
+  }
+  // Every vertex whose one-ring a split or weld changed is a corner of one of the faces it
+  // left (the welded vertex itself is gone).
+  void ring_changed(const Mesh48& mesh, Face f) {
+    for (Vertex v : mesh.vertices(f)) rings_changed.push_back(v);
   }
 
   void grow(const Mesh48& mesh) {
@@ -95,6 +105,9 @@ class Adapter::Tracker final : public MeshListener {
   std::vector<std::uint32_t> stamp;
   std::vector<std::uint64_t> birth_step;
   std::vector<Face> touched;
+  // Since the last fold screen that found nothing (Adapter::publish_repaired).
+  bool recording_ring_changes = false;
+  std::vector<Vertex> rings_changed;
   std::uint64_t current_step = 0;
   std::size_t vertices_created = 0, projection_failures = 0;
 
@@ -161,10 +174,13 @@ const StepStats& Adapter::initialize_here() {
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
   mesh_.add_listener(&predictor_);
+  mesh_.add_listener(&smoothing_workspace_);
+  smoothing_workspace_.forget_frames();
   predictor_.invalidate();
   step_ = 0;
   stats_ = StepStats{};
   stats_.time = surface_.time();
+  ++surface_epoch_;   // the surface may have been changed since the last step
   surface_changed();  // remember the state the initial mesh was made for
   tracker_->current_step = 0;
   tracker_->grow(mesh_);
@@ -258,6 +274,7 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   PhaseSeconds& seconds = stats_.seconds;
   if (options_.geometric && probe_.follows_material() && !rest_points_fresh) record_rest_points();
   surface_.set_time(t);
+  ++surface_epoch_;
   if (topology_) check_topology();
   const bool correct = options_.geometric && surface_changed();
   if (correct) normal_correction();
@@ -265,6 +282,11 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   if (correct) tangential_correction();
   if (correct) repair(options_.fold_repair);
   if (correct && topology_) rebuild_if_folded();
+  // From a clean screen on, only splits and welds change the mesh before the frame is
+  // published (no vertex moves): publish_repaired() looks again only where they did.
+  tracker_->rings_changed.clear();
+  tracker_->recording_ring_changes = correct && !topology_ && options_.fold_repair.enabled &&
+                                     stats_.folds_left == 0 && stats_.slivers_left == 0;
   seconds.smooth += clock.lap();
   sampling();
   seconds.sample += clock.lap();
@@ -292,7 +314,12 @@ void Adapter::publish_repaired() {
   Stopwatch clock;
   std::vector<Face>& folded = bad_faces_[0];
   std::vector<Face>& slivers = bad_faces_[1];
-  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+  if (tracker_->recording_ring_changes && options_.fold_repair.screen_changed_only)
+    find_bad_faces_around(mesh_, surface_, options_.fold_repair.min_angle_deg,
+                          tracker_->rings_changed, folded, slivers);
+  else
+    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+  tracker_->recording_ring_changes = false;
   stats_.folds_left = folded.size();
   stats_.slivers_left = slivers.size();
   if (folded.empty() && slivers.empty()) {
@@ -309,20 +336,27 @@ void Adapter::publish_repaired() {
   stats_.seconds.split += clock.lap();
 }
 
-void Adapter::rebuild_from_base() {
+bool Adapter::rebuild_from_base() {
   // As initialize() does, but within a step: every vertex is born now (none survives), local
-  // repairs of this step included.
+  // repairs of this step included. False (the mesh kept) when no base mesh can be placed now.
+  std::optional<Mesh48> base = mid_run_base_mesh();
+  if (!base) return false;
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
-  mesh_ = surface_.base_mesh();
+  mesh_ = std::move(*base);
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
+  mesh_.add_listener(&predictor_);  // (was missing: split vertices kept a freed id's frame)
+  predictor_.invalidate();
+  mesh_.add_listener(&smoothing_workspace_);
+  smoothing_workspace_.forget_frames();
   tracker_->grow(mesh_);
   for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
   if (options_.structural) split_pass(true);
+  return true;
 }
 
 void Adapter::adopt_repair(const std::vector<Vertex>& born) {
@@ -334,6 +368,7 @@ void Adapter::adopt_repair(const std::vector<Vertex>& born) {
   for (const Face f : mesh_.live_faces()) tracker_->touch(f);
   samples_.reset(mesh_);
   predictor_.invalidate();
+  smoothing_workspace_.forget_frames();
 }
 
 bool Adapter::surface_changed() {
@@ -369,11 +404,26 @@ void Adapter::normal_correction() {
   const bool planned = starts_planned_ && projection_starts_.size() >= mesh_.vertex_capacity();
   starts_planned_ = false;
   std::size_t failures = 0;
+  // Implicit, predictive sampling: F and grad F where each vertex lands are kept for the
+  // predictor (begin_step), as SurfaceProbe::project_vertex(_from) would project it.
+  const auto* implicit =
+      probe_.parametric() ? nullptr : &static_cast<const ImplicitSurface&>(surface_);
+  const bool keep = implicit && options_.sampling == Sampling::kPredictive;
+  if (keep) predictor_.grow_for(mesh_);
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     if (!mesh_.is_alive(v)) continue;
     const auto k = static_cast<std::size_t>(i);
+    if (keep) {
+      if (carry && !planned) probe_.carry_vertex(mesh_, v, rest_points_[k]);
+      const ProjectionResult r = planned ? project_to_surface(*implicit, projection_starts_[k])
+                                         : project_to_surface(*implicit, mesh_.position(v));
+      mesh_.position(v) = r.point;
+      if (!r.converged) ++failures;
+      predictor_.note(v, r.point, r.value, r.gradient, surface_epoch_);
+      continue;
+    }
     if (planned) {
       if (!probe_.project_vertex_from(mesh_, v, projection_starts_[k])) ++failures;
       continue;
@@ -385,11 +435,31 @@ void Adapter::normal_correction() {
 }
 
 void Adapter::tangential_correction() {
-  const SmoothingResult r =
-      smooth_tangentially(mesh_, surface_, options_.smoothing, &smoothing_workspace_);
+  // A step that needed sub-steps moves fast against the mesh: frames go stale within it, so
+  // none is reused (tangential_smoothing.cpp, frame_reusable). Nor on parametric surfaces:
+  // on sinc, reuse let skipped faces' errors escape the predictor's bound (5.8x of it over
+  // 100 steps, PredictiveAnimation/sinc; 0.79x without reuse), not yet understood.
+  SmoothingOptions smoothing = options_.smoothing;
+  smoothing.reuse_frames =
+      smoothing.reuse_frames && stats_.substeps == 1 && !probe_.parametric();
+  const SmoothingResult r = smooth_tangentially(mesh_, surface_, smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
+  if (!probe_.parametric() && options_.sampling == Sampling::kPredictive) {
+    // Where the smoothing moved a vertex, its projection's F and grad F (ErrorPredictor::note).
+    predictor_.grow_for(mesh_);
+    const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      double value;
+      Vec3 gradient;
+      if (mesh_.is_alive(v) && smoothing_workspace_.landed(v, value, gradient))
+        predictor_.note(v, mesh_.position(v), value, gradient, surface_epoch_);
+    }
+  }
   stats_.smoothing_moved += r.moved;
   stats_.smoothing_reverted += r.reverted;
+  stats_.frames_reused += r.frames_reused;
 }
 
 void Adapter::sampling() {
@@ -399,7 +469,8 @@ void Adapter::sampling() {
     stats_.faces_measured += mesh_.n_faces();
     return;
   }
-  predictor_.begin_step(mesh_, probe_, start_positions_, step_);
+  predictor_.begin_step(mesh_, probe_, start_positions_, step_, surface_epoch_);
+  stats_.evaluations_reused += predictor_.reused_evaluations();
   predictor_.select(
       mesh_, probe_, samples_,
       [&](Face f, double error) {

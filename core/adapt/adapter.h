@@ -14,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -128,14 +129,18 @@ class Adapter {
   // rebuilds the mesh from F's contour (a global re-base: no vertex survives it).
   void watch_topology();
   void check_topology();
-  // True when the local repairs leave the mesh with the contour's topology.
+  // True when the local repairs leave the mesh with F's topology (TopologyCheck); why not is
+  // added to the step's repair_refusals.
   bool repair_topology_locally(const TopologyCheck& check);
   // After a local repair: the stores follow the mesh's surgery; `born` are its new vertices.
   void adopt_repair(const std::vector<Vertex>& born);
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
   // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
   void rebuild_if_folded();
-  void rebuild_from_base();
+  // A global re-base; false (the mesh kept, the reason in repair_refusals) when no base mesh
+  // can be placed on the surface now.
+  bool rebuild_from_base();
+  std::optional<Mesh48> mid_run_base_mesh();
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 
@@ -151,6 +156,9 @@ class Adapter {
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
   std::uint64_t step_ = 0;
+  // Numbers the surface states a step goes through (one per advance), so that F and grad F
+  // evaluated where a vertex landed are reused only in the same state (ErrorPredictor::note).
+  std::uint64_t surface_epoch_ = 0;
   std::uint32_t splits_since_clock_ = 0;  // the deadline is checked every 64 splits
   double last_time_ = 0.0;
   std::vector<double> last_parameters_;

@@ -1,8 +1,12 @@
 // The adapter's topology hooks (issue 16): kept apart from the per-step phases in adapter.cpp.
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <stdexcept>
+#include <string>
 
 #include "core/adapt/adapter.h"
+#include "core/topology/contour_base_mesh.h"
 #include "core/topology/local_repair.h"
 #include "core/topology/topology_events.h"
 
@@ -26,10 +30,7 @@ void Adapter::check_topology() {
   // Locally first; when that cannot be done the whole mesh is rebuilt from F's contour at this
   // time (a global re-base), which the split pass then refines like a first mesh.
   const auto start = std::chrono::steady_clock::now();
-  if (!repair_topology_locally(check)) {
-    rebuild_from_base();
-    stats_.rebuilt = true;
-  }
+  if (!repair_topology_locally(check) && rebuild_from_base()) stats_.rebuilt = true;
   topology_->mesh_rebuilt(mesh_);
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -49,7 +50,12 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   o.max_spacing = 0.75 * topology_->spacing();
   std::size_t repaired = 0;
   for (const TopologyEvent& e : check.events) {
-    if (e.kind == TopologyEventKind::kMismatch) return false;  // not located
+    if (e.kind == TopologyEventKind::kMismatch) {
+      stats_.repair_refusals.push_back(
+          "the contour's topology differs from the mesh's, but no critical point of F crossed "
+          "zero: the change is not located");
+      return false;
+    }
     const LocalRepairResult r = repair_locally(mesh_, implicit, e.position, o);
     if (!r.repaired) {
       stats_.repair_refusals.push_back(r.why_not);
@@ -62,14 +68,70 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   }
   if (repaired == 0) return false;
   stats_.local_repairs += repaired;
-  return summarize_topology(mesh_) == check.contour;
+  // What the mesh must be now: the grid's contour where it resolves F's critical points, else
+  // the Euler characteristic Morse theory gives for the events (topology_events.h).
+  const MeshTopologySummary now = summarize_topology(mesh_);
+  const bool right =
+      check.contour_trusted ? now == check.contour : now.euler == check.expected_euler;
+  if (!right)
+    stats_.repair_refusals.push_back(
+        "the repaired mesh has Euler characteristic " + std::to_string(now.euler) + " and " +
+        std::to_string(now.components) + " component(s), F's zero set " +
+        (check.contour_trusted ? std::to_string(check.contour.euler) + " and " +
+                                     std::to_string(check.contour.components)
+                               : std::to_string(check.expected_euler) + " (Morse)"));
+  return right;
+}
+
+namespace {
+
+// check_orientation's test for a mesh made mid-run: every face facing up F's gradient.
+bool faces_outwards(const Mesh48& mesh, const ImplicitSurface& surface) {
+  for (const Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+    Vec3 g;
+    surface.value_gradient((a + b + c) / 3.0, g);
+    if (!((b - a).cross(c - a).dot(g) > 0)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<Mesh48> Adapter::mid_run_base_mesh() {
+  // The surface's own base mesh first (a contour of F on its grid). Right at an event F has a
+  // double cone (grad F = 0 on the surface) and the contour's triangles at the cone's tip can
+  // face against grad F: the surface refuses such a base (check_orientation). That is often a
+  // fact about where the grid's points fall, not about the surface: contours on slightly
+  // different grids (other cell counts along the longest side, so that no grid point keeps its
+  // place near the tip) are tried. When every grid folds, the surface is one no mesh can
+  // follow (ripples finer than the grid: CliHostile), and the surface's refusal stands.
+  std::exception_ptr refusal;
+  try {
+    return surface_.base_mesh();
+  } catch (const std::invalid_argument&) {
+    refusal = std::current_exception();
+  }
+  if (const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_)) {
+    for (const int cells : {25, 23, 27, 21, 29, 20}) {
+      ContourBaseOptions o;
+      o.cells_along_longest = cells;
+      try {
+        Mesh48 mesh = make_contour_base_mesh(*implicit, o);
+        if (faces_outwards(mesh, *implicit)) return mesh;
+      } catch (const std::invalid_argument&) {
+      }
+    }
+  }
+  std::rethrow_exception(refusal);
 }
 
 void Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
   if (folded == 0) return;
   const auto start = std::chrono::steady_clock::now();
-  rebuild_from_base();
+  if (!rebuild_from_base()) return;
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;

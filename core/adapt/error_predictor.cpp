@@ -27,6 +27,7 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
     frame_.resize(mesh.vertex_capacity());
     frame_step_.resize(mesh.vertex_capacity(), 0);
     moved_.resize(mesh.vertex_capacity(), 0.0f);
+    evaluated_.resize(mesh.vertex_capacity());
   }
   if (reference_.size() < mesh.face_capacity()) {
     reference_.resize(mesh.face_capacity());
@@ -35,7 +36,8 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
   }
 }
 
-void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v) {
+void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
+                                    std::uint64_t epoch) {
   VertexFrame& frame = frame_[v.idx];
   if (probe.parametric()) {
     const auto& s = static_cast<const ParametricSurface&>(probe.surface());
@@ -46,7 +48,10 @@ void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& prob
   } else {
     const auto& s = static_cast<const ImplicitSurface&>(probe.surface());
     Vec3 g;
-    const double value = s.value_gradient(mesh.position(v), g);
+    const PointEvaluation& e = evaluated_[v.idx];
+    const bool known = epoch != 0 && e.epoch == epoch && e.point == mesh.position(v);
+    if (known) g = e.gradient;
+    const double value = known ? e.value : s.value_gradient(mesh.position(v), g);
     const double norm = g.norm();
     frame.a = norm > 0 ? Vec3(g / norm) : Vec3::Zero();
     frame.offset = norm > 0 ? std::abs(value) / norm : std::numeric_limits<double>::infinity();
@@ -55,20 +60,25 @@ void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& prob
 }
 
 void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
-                                const std::vector<Vec3>& start_positions, std::uint64_t step) {
+                                const std::vector<Vec3>& start_positions, std::uint64_t step,
+                                std::uint64_t epoch) {
   step_ = step;
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  std::size_t reused = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : reused) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(v)) continue;
-    refresh_vertex(mesh, probe, v);
+    const PointEvaluation& e = evaluated_[static_cast<std::size_t>(i)];
+    reused += epoch != 0 && e.epoch == epoch && e.point == mesh.position(v);
+    refresh_vertex(mesh, probe, v, epoch);
     const auto k = static_cast<std::size_t>(i);
     moved_[k] = k < start_positions.size()
                     ? static_cast<float>((mesh.position(v) - start_positions[k]).norm())
                     : std::numeric_limits<float>::infinity();
   }
+  reused_evaluations_ = probe.parametric() ? 0 : reused;
 }
 
 ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,

@@ -52,6 +52,7 @@
 #include "core/adapt/sample_store.h"
 #include "core/adapt/surface_probe.h"
 #include "core/mesh/mesh48.h"
+#include "core/surface/projection.h"
 
 namespace dynamesh {
 
@@ -65,8 +66,20 @@ class ErrorPredictor final : public MeshListener {
 
   // Start of a step's sampling, after the geometric correction: the vertices' first-order
   // data at their new places. `start_positions` are the positions at the start of the step.
+  // Implicit surfaces: a vertex that still sits exactly where note() saw F and grad F
+  // evaluated, in the surface state `epoch`, reuses them (the same numbers an evaluation
+  // would give: exact).
   void begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
-                  const std::vector<Vec3>& start_positions, std::uint64_t step);
+                  const std::vector<Vec3>& start_positions, std::uint64_t step,
+                  std::uint64_t epoch = 0);
+
+  // F and grad F were evaluated at `point` (where vertex v now is) in the surface state
+  // `epoch` (> 0), e.g. by the projection that put it there. Thread-safe for distinct
+  // vertices; call grow_for(mesh) first.
+  void note(Vertex v, const Vec3& point, double value, const Vec3& gradient, std::uint64_t epoch) {
+    evaluated_[v.idx] = PointEvaluation{point, value, gradient, epoch};
+  }
+  void grow_for(const Mesh48& mesh) { grow(mesh); }
 
   // The faces to measure this step. `would_split(f, error)`: whether some criterion would
   // split f at that error. Stores every skipped face's bound (bound()).
@@ -84,6 +97,8 @@ class ErrorPredictor final : public MeshListener {
   }
 
   std::size_t skipped() const { return skipped_; }
+  // Vertices whose F and grad F the last begin_step took from note() instead of evaluating.
+  std::size_t reused_evaluations() const { return reused_evaluations_; }
 
   // A split-born vertex (its id may be one a weld freed this step) has no frame yet.
   void after_split(Mesh48& mesh, const DiamondChange& change) override;
@@ -101,14 +116,17 @@ class ErrorPredictor final : public MeshListener {
   };
 
   void grow(const Mesh48& mesh);
-  void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v);
+  void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
+                      std::uint64_t epoch = 0);
   Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
   bool moved_too_far(const Mesh48& mesh, Face f) const;
 
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;
-  std::vector<std::uint64_t> frame_step_;  // step each frame was computed at (+1; 0 = never)
-  std::vector<float> moved_;               // each vertex's displacement this step
+  std::vector<std::uint64_t> frame_step_;   // step each frame was computed at (+1; 0 = never)
+  std::vector<float> moved_;                // each vertex's displacement this step
+  std::vector<PointEvaluation> evaluated_;  // note()
+  std::size_t reused_evaluations_ = 0;
   std::vector<Coefficients> reference_;
   std::vector<std::uint8_t> has_reference_;
   std::vector<double> bound_;

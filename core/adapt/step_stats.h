@@ -34,6 +34,12 @@ struct StepStats {
   double survivor_displacement_mean = 0.0, survivor_displacement_max = 0.0;
   // Tangential correction: vertex moves kept and undone by its guards.
   std::size_t smoothing_moved = 0, smoothing_reverted = 0;
+  // ... and the curvature frames it reused rather than evaluated (tangential_smoothing.cpp,
+  // frame_reusable), summed over iterations and sub-steps.
+  std::size_t frames_reused = 0;
+  // Predictive sampling: vertices whose F and grad F the predictor took from the projection
+  // that placed them (ErrorPredictor::note) instead of evaluating again.
+  std::size_t evaluations_reused = 0;
   // Angle guard (AdaptOptions::angle_guard): splits refused, pathological vertices welded.
   std::size_t splits_refused = 0, pathological_welds = 0;
   std::size_t projection_failures = 0;

@@ -30,13 +30,27 @@ bool SurfaceProbe::project_vertex(Mesh48& mesh, Vertex v) const {
     mesh.position(v) = parametric_->position(mesh.uv(v));
     return true;
   }
-  const ProjectionResult r = project_to_surface(*implicit_, mesh.position(v));
+  ProjectionOptions o;
+  o.quadratic_beyond = trusted_step(mesh, v);
+  const ProjectionResult r = project_to_surface(*implicit_, mesh.position(v), o);
   mesh.position(v) = r.point;
   return r.converged;
 }
 
+double SurfaceProbe::trusted_step(const Mesh48& mesh, Vertex v) {
+  double shortest = HUGE_VAL;
+  const Vec3& p = mesh.position(v);
+  mesh.for_each_corner_around(v, [&](const Corner& c) {
+    const Vertex next = mesh.vertices(c.face)[static_cast<std::size_t>((c.local + 1) % 3)];
+    shortest = std::min(shortest, (mesh.position(next) - p).squaredNorm());
+  });
+  return std::isfinite(shortest) ? std::sqrt(shortest) : 0.0;
+}
+
 bool SurfaceProbe::project_vertex_from(Mesh48& mesh, Vertex v, const ProjectionStart& start) const {
-  const ProjectionResult r = project_to_surface(*implicit_, start);
+  ProjectionOptions o;
+  o.quadratic_beyond = trusted_step(mesh, v);
+  const ProjectionResult r = project_to_surface(*implicit_, start, o);
   mesh.position(v) = r.point;
   return r.converged;
 }

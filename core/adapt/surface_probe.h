@@ -70,6 +70,11 @@ class SurfaceProbe {
   // corner (the corners are on the surface).
   double signed_distance_in_triangle(const Vec3 p[3], const Vec3& x) const;
 
+  // The length within which a vertex's Newton step is trusted to F's linear model: its shortest
+  // incident edge (ProjectionOptions::quadratic_beyond; beyond it a long step, next to a
+  // critical point, could carry the vertex past its neighbours and turn faces over).
+  static double trusted_step(const Mesh48& mesh, Vertex v);
+
   // Unit normal of the surface at a vertex (parametric: at its (u, v)).
   Vec3 normal_at(const Mesh48& mesh, Vertex v) const;
 

@@ -97,6 +97,25 @@ bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& f
 
 }  // namespace
 
+namespace {
+
+// 1 folded, 2 sliver, 0 neither: the screen's verdict on one face, given its normal and its
+// corners' summed (area-weighted) mesh normals and their lengths.
+std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f, const Vec3& fn,
+                     const Vec3* corner_normal, const double* corner_norm, double cos_limit) {
+  const double half_norm = 0.5 * fn.norm();
+  const auto v = mesh.vertices(f);
+  bool suspect = !(fn.squaredNorm() > 0);
+  for (int c = 0; c < 3; ++c)
+    suspect = suspect || fn.dot(corner_normal[c]) <= half_norm * corner_norm[c];
+  if (suspect && folded_against_surface(mesh, surface, f)) return 1;
+  if (below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit))
+    return 2;
+  return 0;
+}
+
+}  // namespace
+
 void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
                     std::vector<Face>& folded, std::vector<Face>& slivers) {
   folded.clear();
@@ -115,8 +134,11 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     if (mesh.is_alive(f)) normal[static_cast<std::size_t>(i)] = face_normal(mesh, f);
   }
   std::vector<Vec3> vertex_normal(static_cast<std::size_t>(nv), Vec3::Zero());
-  for (Face f : mesh.live_faces())
-    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += normal[f.idx];
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Face f(static_cast<std::uint32_t>(i));
+    if (!mesh.is_alive(f)) continue;
+    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += normal[static_cast<std::size_t>(i)];
+  }
   std::vector<double> vertex_norm(static_cast<std::size_t>(nv));
 #pragma omp parallel for schedule(static) if (nv > kParallelMin)
   for (std::int64_t i = 0; i < nv; ++i)
@@ -127,22 +149,54 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
-    const Vec3& fn = normal[static_cast<std::size_t>(i)];
-    const double half_norm = 0.5 * fn.norm();
     const auto v = mesh.vertices(f);
-    bool suspect = !(fn.squaredNorm() > 0);
-    for (Vertex w : v)
-      suspect = suspect || fn.dot(vertex_normal[w.idx]) <= half_norm * vertex_norm[w.idx];
-    auto& k = kind[static_cast<std::size_t>(i)];
-    if (suspect && folded_against_surface(mesh, surface, f))
-      k = 1;
-    else if (below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit))
-      k = 2;
+    const Vec3 corner_normal[3] = {vertex_normal[v[0].idx], vertex_normal[v[1].idx],
+                                   vertex_normal[v[2].idx]};
+    const double corner_norm[3] = {vertex_norm[v[0].idx], vertex_norm[v[1].idx],
+                                   vertex_norm[v[2].idx]};
+    kind[static_cast<std::size_t>(i)] =
+        verdict(mesh, surface, f, normal[static_cast<std::size_t>(i)], corner_normal, corner_norm,
+                cos_limit);
   }
   for (std::int64_t i = 0; i < n; ++i) {
     const auto k = kind[static_cast<std::size_t>(i)];
     if (k == 1) folded.push_back(Face(static_cast<std::uint32_t>(i)));
     if (k == 2) slivers.push_back(Face(static_cast<std::uint32_t>(i)));
+  }
+}
+
+void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
+                           const std::vector<Vertex>& vertices, std::vector<Face>& folded,
+                           std::vector<Face>& slivers) {
+  folded.clear();
+  slivers.clear();
+  // The faces to judge: every live face with a corner in `vertices`, once, in face order.
+  std::vector<Face> faces;
+  for (Vertex v : vertices)
+    if (mesh.is_alive(v))
+      mesh.for_each_corner_around(v, [&](Corner c) { faces.push_back(c.face); });
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  // A corner's mesh normal as find_bad_faces sums it: its faces' normals in face order.
+  std::vector<Face> ring;
+  auto mesh_normal = [&](Vertex v) {
+    ring.clear();
+    mesh.for_each_corner_around(v, [&](Corner c) { ring.push_back(c.face); });
+    std::sort(ring.begin(), ring.end());
+    Vec3 sum = Vec3::Zero();
+    for (Face f : ring) sum += face_normal(mesh, f);
+    return sum;
+  };
+  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
+  for (Face f : faces) {
+    const auto v = mesh.vertices(f);
+    const Vec3 corner_normal[3] = {mesh_normal(v[0]), mesh_normal(v[1]), mesh_normal(v[2])};
+    const double corner_norm[3] = {corner_normal[0].norm(), corner_normal[1].norm(),
+                                   corner_normal[2].norm()};
+    const std::uint8_t k =
+        verdict(mesh, surface, f, face_normal(mesh, f), corner_normal, corner_norm, cos_limit);
+    if (k == 1) folded.push_back(f);
+    if (k == 2) slivers.push_back(f);
   }
 }
 

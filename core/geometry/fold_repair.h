@@ -26,6 +26,10 @@ struct FoldRepairOptions {
   bool enabled = true;
   double min_angle_deg = 10.0;  // faces with a smaller angle are relaxed too
   int max_rounds = 12;
+  // The adapter's last look before publishing a frame (Adapter::publish_repaired) judges only
+  // the faces around vertices whose one-ring a split or weld changed since this step's
+  // correction found no bad face (find_bad_faces_around: the same verdicts); false: all faces.
+  bool screen_changed_only = true;
 };
 
 struct FoldReport {
@@ -37,6 +41,14 @@ struct FoldReport {
 // Faces that are folded (`folded`) or slivers (`slivers`), checked as described above.
 void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
                     std::vector<Face>& folded, std::vector<Face>& slivers);
+
+// find_bad_faces' verdicts on the faces with a corner in `vertices` only, bit for bit (each
+// corner's mesh normal is summed over its faces in the same order). Where only those
+// vertices' one-rings changed since a find_bad_faces that found no bad face (splits and welds
+// moving no vertex), this is what a full find_bad_faces would find.
+void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
+                           const std::vector<Vertex>& vertices, std::vector<Face>& folded,
+                           std::vector<Face>& slivers);
 
 FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options);
 

@@ -30,13 +30,15 @@ bool parametric_move(const ParametricSurface& s, const Mesh48& mesh, Vertex v, c
 }
 
 bool implicit_move(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
-                   Vec3& position, std::size_t& failures) {
+                   Vec3& position, std::size_t& failures, double* value, Vec3* gradient) {
   const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
   if (!r.converged) {
     ++failures;
     return false;
   }
   position = r.point;
+  if (value) *value = r.value;
+  if (gradient) *gradient = r.gradient;
   return true;
 }
 

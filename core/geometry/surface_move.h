@@ -16,8 +16,10 @@ bool parametric_move(const ParametricSurface& s, const Mesh48& mesh, Vertex v, c
                      Vec2& uv, Vec3& position);
 
 // Implicit: p + move projected; false (and ++failures) when the projection did not converge.
+// `value`, `gradient` (optional): F and grad F where the vertex lands.
 bool implicit_move(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
-                   Vec3& position, std::size_t& failures);
+                   Vec3& position, std::size_t& failures, double* value = nullptr,
+                   Vec3* gradient = nullptr);
 
 // Unit normal of S at a vertex (parametric: at its (u, v); implicit: grad F / |grad F|).
 Vec3 surface_normal_at(const Surface& s, const Mesh48& mesh, Vertex v);

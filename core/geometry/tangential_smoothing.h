@@ -36,20 +36,34 @@ struct SmoothingOptions {
   // Centroid weights: inverse edge length (keeps the 4-8 mesh's grading; default) or
   // uniform (the paper's plain one-ring centroid).
   bool scale_invariant_weights = false;
+  // With a workspace kept from step to step: reuse a vertex's curvature frame while it and
+  // the surface under it barely moved (the bound is in tangential_smoothing.cpp,
+  // frame_reusable); false evaluates every frame every iteration.
+  bool reuse_frames = true;
 };
 
 struct SmoothingResult {
   std::size_t moved = 0;     // vertex moves kept (summed over iterations)
   std::size_t reverted = 0;  // moves undone by the guards
   std::size_t projection_failures = 0;
+  std::size_t frames_reused = 0;  // curvature frames reused instead of evaluated
 };
 
 // Scratch buffers of smooth_tangentially, kept by a caller that smooths every step so that
-// a step reuses their memory instead of allocating (and page-faulting) it anew.
-class SmoothingWorkspace {
+// a step reuses their memory instead of allocating (and page-faulting) it anew, and the
+// curvature frames of vertices that barely moved (SmoothingOptions::reuse_frames). Listen to
+// the mesh's splits (a new vertex may carry a freed id); forget_frames() when the mesh is
+// replaced.
+class SmoothingWorkspace final : public MeshListener {
  public:
   SmoothingWorkspace();
-  ~SmoothingWorkspace();
+  ~SmoothingWorkspace() override;
+  void forget_frames();
+  // Implicit surfaces: F and grad F where the last call moved v, if it did (its projection's
+  // last evaluation; false for a vertex it left in place).
+  bool landed(Vertex v, double& value, Vec3& gradient) const;
+  void after_split(Mesh48& mesh, const DiamondChange& change) override;
+  void after_weld(Mesh48&, const DiamondChange&) override {}
   SmoothingWorkspace(const SmoothingWorkspace&) = delete;
   SmoothingWorkspace& operator=(const SmoothingWorkspace&) = delete;
   struct Buffers;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <tuple>
 
-
 namespace dynamesh {
 
 namespace {
@@ -34,8 +33,9 @@ bool newton_critical(const ImplicitSurface& surface, const Vec3& start, const Bo
     if (step.norm() < tolerance) {
       out.position = x;
       out.value = surface.value(x);
-      out.index = static_cast<int>(
-          (surface.hessian(x).selfadjointView<Eigen::Lower>().eigenvalues().array() < 0).count());
+      const Vec3 at = surface.hessian(x).selfadjointView<Eigen::Lower>().eigenvalues();
+      out.index = static_cast<int>((at.array() < 0).count());
+      out.curvature = at.cwiseAbs().maxCoeff();
       return true;
     }
   }

@@ -19,6 +19,7 @@ struct CriticalPoint {
   Vec3 position{Vec3::Zero()};
   double value = 0.0;  // F there
   int index = 0;       // negative eigenvalues of the Hessian: 0 minimum, 1 and 2 saddles, 3 maximum
+  double curvature = 0.0;  // the Hessian's largest |eigenvalue| there
 };
 
 // F and grad F at every grid point (x fastest). Serial on purpose: a coarse grid of a few

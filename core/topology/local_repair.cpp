@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include "core/surface/projection.h"
 #include "core/topology/marching_tetrahedra.h"
@@ -174,6 +175,19 @@ Vec3 centroid(const std::vector<Vec3>& positions, const Loop& loop) {
   return c / static_cast<double>(loop.size());
 }
 
+// Indices into a and b of the closest pair of vertices between the two loops: where zipping starts.
+std::pair<std::size_t, std::size_t> nearest_pair(const std::vector<Vec3>& positions, const Loop& a,
+                                                 const Loop& b) {
+  std::size_t i0 = 0, j0 = 0;
+  double nearest = HUGE_VAL;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
+      if (d < nearest) nearest = d, i0 = i, j0 = j;
+    }
+  return {i0, j0};
+}
+
 // Zips the border loop `a` (halfedges a_k -> a_k+1 of remaining faces) to the patch loop `b`
 // (halfedges b_k -> b_k+1 of patch triangles): the strip holds every a_k+1 -> a_k and
 // b_k+1 -> b_k, walking `a` backwards and `b` forwards (the same way round) from their
@@ -183,13 +197,8 @@ Vec3 centroid(const std::vector<Vec3>& positions, const Loop& loop) {
 void zip(const std::vector<Vec3>& positions, const Loop& a, const Loop& b,
          std::vector<Triangle>& out) {
   const std::size_t na = a.size(), nb = b.size();
-  std::size_t i0 = 0, j0 = 0;
-  double best = HUGE_VAL;
-  for (std::size_t i = 0; i < na; ++i)
-    for (std::size_t j = 0; j < nb; ++j) {
-      const double d = (positions[a[i]] - positions[b[j]]).squaredNorm();
-      if (d < best) best = d, i0 = i, j0 = j;
-    }
+  const auto [first_a, first_b] = nearest_pair(positions, a, b);
+  const std::size_t i0 = first_a, j0 = first_b;
   const auto A = [&](std::size_t s) { return a[(i0 + na - s % na) % na]; };  // backwards
   const auto B = [&](std::size_t s) { return b[(j0 + s) % nb]; };
   // How far round each loop each vertex is, as a fraction of the whole turn about the border
@@ -316,12 +325,70 @@ double facing(const ImplicitSurface& surface, const std::vector<Vec3>& p, const 
   return d > 0 ? n.dot(g) / d : -1.0;
 }
 
+// Zips like zip() (the same start, the same two kinds of triangles), choosing the order of the
+// loops' steps by dynamic programming over all of them (Fuchs, Kedem and Uselton's optimal
+// contour stitching): the order whose worst triangle faces most along grad F (cosines above
+// 0.5 all count as good), then the shortest rungs. A greedy walk follows the loops' jagged
+// sampling into triangles turned over where a coarse patch meets a border of coarse faces.
+// Returns the worst cosine.
+double zip_facing(const ImplicitSurface& surface, const std::vector<Vec3>& positions, const Loop& a,
+                  const Loop& b, std::vector<Triangle>& out) {
+  const std::size_t na = a.size(), nb = b.size();
+  const auto [first_a, first_b] = nearest_pair(positions, a, b);
+  const std::size_t i0 = first_a, j0 = first_b;
+  const auto A = [&](std::size_t s) { return a[(i0 + na - s % na) % na]; };  // backwards
+  const auto B = [&](std::size_t s) { return b[(j0 + s) % nb]; };
+  struct Best {
+    double worst = -HUGE_VAL, length = HUGE_VAL;
+    char from = 0;  // 'a': reached by a step along a, 'b': along b
+  };
+  const auto better = [](double worst, double length, const Best& than) {
+    return worst > than.worst || (worst == than.worst && length < than.length);
+  };
+  constexpr double kGood = 0.5;
+  std::vector<Best> best((na + 1) * (nb + 1));
+  const auto at = [&](std::size_t sa, std::size_t sb) -> Best& { return best[sa * (nb + 1) + sb]; };
+  at(0, 0) = {HUGE_VAL, 0.0, 0};
+  for (std::size_t sa = 0; sa <= na; ++sa)
+    for (std::size_t sb = 0; sb <= nb; ++sb) {
+      if (sa == 0 && sb == 0) continue;
+      Best& here = at(sa, sb);
+      if (sa > 0) {  // every state is reached from (0, 0): the steps only grow
+        const Best& prev = at(sa - 1, sb);
+        const Triangle t{A(sa - 1), A(sa), B(sb)};
+        const double worst = std::min(prev.worst, std::min(kGood, facing(surface, positions, t)));
+        const double length = prev.length + (positions[A(sa)] - positions[B(sb)]).norm();
+        if (better(worst, length, here)) here = {worst, length, 'a'};
+      }
+      if (sb > 0) {
+        const Best& prev = at(sa, sb - 1);
+        const Triangle t{B(sb), B(sb - 1), A(sa)};
+        const double worst = std::min(prev.worst, std::min(kGood, facing(surface, positions, t)));
+        const double length = prev.length + (positions[A(sa)] - positions[B(sb)]).norm();
+        if (better(worst, length, here)) here = {worst, length, 'b'};
+      }
+    }
+  std::vector<Triangle> strip;
+  for (std::size_t sa = na, sb = nb; sa > 0 || sb > 0;) {
+    if (at(sa, sb).from == 'a') {
+      strip.push_back({A(sa - 1), A(sa), B(sb)});
+      --sa;
+    } else {
+      strip.push_back({B(sb), B(sb - 1), A(sa)});
+      --sb;
+    }
+  }
+  out.insert(out.end(), strip.rbegin(), strip.rend());
+  return at(na, nb).worst;
+}
+
 // The strip's rungs follow the loops' jagged sampling, and a rung can cross its neighbour on
 // the surface: a triangle turned over. Flipping the edge it shares with another new triangle
 // (the quad's other diagonal) unfolds it when both new triangles then face outwards. Returns
 // whether every triangle faces outwards.
+template <class MayJoin>
 bool unfold_by_flips(const ImplicitSurface& surface, const std::vector<Vec3>& p,
-                     std::vector<Triangle>& triangles) {
+                     const MayJoin& may_join, std::vector<Triangle>& triangles) {
   const auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
   std::unordered_map<std::uint64_t, std::uint32_t> half;  // directed edge -> 3 * triangle + i
   const auto enter = [&](std::uint32_t k) {
@@ -347,6 +414,7 @@ bool unfold_by_flips(const ImplicitSurface& surface, const std::vector<Vec3>& p,
         const std::uint32_t x = t2[(it->second % 3 + 2) % 3];
         if (x == w || half.count(key(w, x)) || half.count(key(x, w))) continue;
         const Triangle a{w, u, x}, b{x, v, w};
+        if (!may_join(w, x, a, b)) continue;
         if (std::min(facing(surface, p, a), facing(surface, p, b)) <=
             std::min(facing(surface, p, t), facing(surface, p, t2)))
           continue;
@@ -512,7 +580,9 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
     for (std::uint32_t& v : b) v += offset;
     patch_centres.push_back(centroid(positions, b));
   }
+  // Each loop's partner, and the loops in local numbering.
   std::vector<char> taken(patch_loops.size(), 0);
+  std::vector<std::pair<Loop, std::size_t>> zipped;
   for (const Loop& loop : mesh_loops) {
     Loop a;
     for (const std::uint32_t v : loop) a.push_back(local_of[v]);
@@ -523,17 +593,57 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
                         (patch_centres[k] - c).norm() < (patch_centres[best] - c).norm()))
         best = k;
     taken[best] = 1;
-    zip(positions, a, patch_loops[best], triangles);
+    zipped.emplace_back(std::move(a), best);
   }
+  const std::vector<Triangle> patch_triangles = triangles;
+  // The greedy strips first (their rungs follow both loops evenly); should a triangle stay
+  // turned over after the flips, the strips whose order has the best worst triangle.
+  const auto stitch = [&](bool best_order) {
+    triangles = patch_triangles;
+    for (const auto& [a, k] : zipped) {
+      std::vector<Triangle> strip;
+      if (!best_order || zip_facing(surface, positions, a, patch_loops[k], strip) <= 0) {
+        strip.clear();
+        zip(positions, a, patch_loops[k], strip);
+      }
+      triangles.insert(triangles.end(), strip.begin(), strip.end());
+    }
+  };
+  stitch(false);
 
-  // 4. Unfold, then pair the new triangles.
-  if (!unfold_by_flips(surface, on_surface(surface, positions, offset), triangles))
-    return refuse("a new triangle would be turned over");
+  // 4. Unfold, then pair the new triangles. A flip may join two of the border's vertices
+  // (an ear on the seam) where no remaining face joins them already and the ear has at most
+  // one seam edge of a coarser face (its refinement edge, a half diamond below); the other
+  // is a leg, across which the old face is alike deep.
+  const auto coarse_seam_edges = [&](const Triangle& t) {
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+      if (a >= offset || b >= offset) continue;
+      const auto it = seam_depth.find(edge_key(existing[b].idx, existing[a].idx));
+      n += it != seam_depth.end() && it->second < depth;
+    }
+    return n;
+  };
+  const auto may_join = [&](std::uint32_t w, std::uint32_t x, const Triangle& t1,
+                            const Triangle& t2) {
+    if (w >= offset || x >= offset) return true;
+    bool joined = false;
+    mesh.for_each_corner_around(existing[w], [&](Corner c) {
+      if (cut[c.face.idx]) return;
+      for (const Vertex v : mesh.vertices(c.face)) joined = joined || v == existing[x];
+    });
+    return !joined && coarse_seam_edges(t1) <= 1 && coarse_seam_edges(t2) <= 1;
+  };
+  const std::vector<Vec3> placed = on_surface(surface, positions, offset);
+  if (!unfold_by_flips(surface, placed, may_join, triangles)) {
+    stitch(true);
+    if (!unfold_by_flips(surface, placed, may_join, triangles))
+      return refuse("a new triangle would be turned over");
+  }
   // A new triangle on an edge of a coarser old face is a half diamond: that edge is its
   // refinement edge (the old face's leg), and it is left out of the pairing.
   std::vector<int> half_at(triangles.size(), -1);  // its seam edge's apex corner
-  std::vector<Triangle> to_pair;
-  std::vector<std::size_t> paired_index;
   for (std::size_t k = 0; k < triangles.size(); ++k) {
     const Triangle& t = triangles[k];
     for (int i = 0; i < 3; ++i) {
@@ -542,28 +652,51 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
       const auto it = seam_depth.find(edge_key(existing[b].idx, existing[a].idx));
       if (it != seam_depth.end() && it->second < depth) half_at[k] = i;
     }
-    if (half_at[k] < 0) {
-      to_pair.push_back(t);
-      paired_index.push_back(k);
-    }
   }
-  std::vector<std::int64_t> partner;
+  // The rest are paired, the matching mended by flips and splits where none is perfect
+  // (triangle_pairing.h): new vertices on F, no new triangle turned over.
+  std::vector<char> exempt(triangles.size(), 0);
+  for (std::size_t k = 0; k < triangles.size(); ++k) exempt[k] = half_at[k] >= 0;
+  PairingMendOptions mend;
+  mend.split_point = [&](const Vec3& a, const Vec3& b) {
+    const Vec3 mid = 0.5 * (a + b);
+    const ProjectionResult r = project_to_surface(surface, mid);
+    return r.converged && (r.point - mid).norm() <= 0.5 * (a - b).norm() ? r.point : mid;
+  };
+  mend.acceptable = [&](const std::vector<Vec3>& p, const Triangle& t) {
+    return facing(surface, p, t) > 0;
+  };
+  mend.fixed_vertices = offset;
+  MendedPairing pairing;
   try {
-    partner = pair_triangles(positions, to_pair);
+    pairing = pair_triangles_mending(positions, triangles, exempt, mend);
   } catch (const std::invalid_argument& e) {
     return refuse(std::string("the new triangles are not a manifold: ") + e.what());
   }
-  if (std::count(partner.begin(), partner.end(), -1) > 0)
-    return refuse("the new triangles cannot all be paired");
+  if (!pairing.complete) return refuse("the new triangles cannot all be paired");
+  std::vector<Triangle> to_pair;
+  std::vector<std::int64_t> partner;
+  std::vector<std::size_t> paired_index, local(triangles.size(), 0);
+  for (std::size_t k = 0; k < triangles.size(); ++k)
+    if (!exempt[k]) {
+      local[k] = to_pair.size();
+      to_pair.push_back(triangles[k]);
+      paired_index.push_back(k);
+    }
+  for (const std::size_t k : paired_index)
+    partner.push_back(
+        static_cast<std::int64_t>(local[static_cast<std::size_t>(pairing.partner[k])]));
   const std::vector<Triangle> paired = refinement_edge_first(to_pair, partner);
   std::vector<Triangle> ordered(triangles.size());
   for (std::size_t k = 0; k < paired.size(); ++k) ordered[paired_index[k]] = paired[k];
-  for (std::size_t k = 0; k < triangles.size(); ++k)
+  for (std::size_t k = 0; k < half_at.size(); ++k)
     if (half_at[k] >= 0) {
       const Triangle& t = triangles[k];
       const int i = half_at[k];
       ordered[k] = {t[i], t[(i + 1) % 3], t[(i + 2) % 3]};
     }
+  result.pairing_flips = pairing.flips;
+  result.pairing_splits = pairing.splits;
   const std::vector<Vec3> created(positions.begin() + offset, positions.end());
   Mesh48 backup = mesh;
   try {
@@ -594,9 +727,10 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   const double h = options.spacing;
   std::string why;
   // The patch as coarse as the seam first (local_repair.h), then finer by steps down to the
-  // finest spacing: a coarser contour's triangles can be paired less often (a triangulated
-  // disk need not have a perfect matching), and a finer one still re-adapts better than a
-  // global re-base.
+  // finest spacing. With the mended pairing and the stitching by dynamic programming the
+  // first attempt is taken on the examples (blobs, torus pinch); the ladder remains for a
+  // contour whose loops do not match the cut's, and a finer patch still re-adapts better than
+  // a global re-base.
   std::vector<double> coarsest;
   for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
     coarsest.push_back(most);

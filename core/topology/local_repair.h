@@ -17,8 +17,11 @@
 //  3. Stitch: each border loop is zipped to the patch loop nearest to it (centroids) by a
 //     strip of triangles, the shorter rung first (the classic contour-stitching greedy).
 //  4. Pair: a perfect matching of the new triangles (triangle_pairing.h); each pair's shared
-//     edge is their refinement edge. No matching, loops that do not correspond, a pinched
-//     border: no repair (the caller falls back to a global re-base).
+//     edge is their refinement edge. A disk's triangles often have none: the maximum
+//     matching is mended by edge flips and splits along dual paths between the single
+//     triangles (pair_triangles_mending). Loops that do not correspond, a pinched border, a
+//     mend that would turn a triangle over: no repair (the caller falls back to a global
+//     re-base).
 #pragma once
 
 #include <string>
@@ -43,7 +46,8 @@ struct LocalRepairResult {
   std::string why_not;  // when not repaired
   std::size_t removed_faces = 0;
   std::size_t added_faces = 0;
-  double spacing = 0.0;  // the patch's contour spacing
+  double spacing = 0.0;                       // the patch's contour spacing
+  int pairing_flips = 0, pairing_splits = 0;  // that mended the new triangles' matching
   std::vector<Vertex> new_vertices;
 };
 

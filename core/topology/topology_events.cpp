@@ -34,6 +34,21 @@ TopologyEventKind kind_of(int index, bool going_negative) {
   }
 }
 
+// Attaching an i-handle to the inside {F < 0} changes its Euler characteristic by (-1)^i, and
+// the boundary surface's by twice that; removing one, by minus that.
+long euler_change(int index, bool going_negative) {
+  const long handle = index % 2 == 0 ? 2 : -2;
+  return going_negative ? handle : -handle;
+}
+
+// Whether the piecewise-linear contour of a grid of cell diagonal `diagonal` may disagree with
+// F's true topology near `cp`: F deviates from its linear interpolant over a cell by up to
+// about |Hess F| diagonal^2 / 8 per edge, and the whole neighbourhood of the critical point
+// within a cell by |Hess F| diagonal^2 / 2 (its second-order model).
+bool within_resolution(const CriticalPoint& cp, double diagonal) {
+  return std::abs(cp.value) <= 0.5 * cp.curvature * diagonal * diagonal;
+}
+
 }  // namespace
 
 const char* to_string(TopologyEventKind kind) {  // declared in topology_event.h
@@ -116,7 +131,10 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   std::vector<CriticalPoint> now = find_critical_points(surface, grid, field, HUGE_VAL);
   const double t0 = previous_time_, t1 = surface.time();
   const double reach = 2.0 * grid.spacing().maxCoeff();
+  const double diagonal = grid.spacing().norm();
+  out.expected_euler = mesh_topology_.euler;
   for (const CriticalPoint& cp : now) {
+    out.contour_trusted = out.contour_trusted && !within_resolution(cp, diagonal);
     const CriticalPoint* match = nullptr;
     for (const CriticalPoint& old : previous_) {
       if (old.index != cp.index) continue;
@@ -127,6 +145,7 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
     const double s = match->value / (match->value - cp.value);
     out.events.push_back({t0 + s * (t1 - t0), (1 - s) * match->position + s * cp.position,
                           kind_of(cp.index, cp.value < 0)});
+    out.expected_euler += euler_change(cp.index, cp.value < 0);
   }
   previous_ = std::move(now);
   previous_time_ = t1;
@@ -134,8 +153,9 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   // Safety net: the contour of the same grid against the mesh.
   const ContourMesh contour = marching_tetrahedra(grid, field.values);
   out.contour = summarize_topology(contour.triangles, contour.positions.size());
-  out.rebase = !(out.contour == mesh_topology_);
-  if (out.rebase && out.events.empty())
+  const bool mismatch = out.contour_trusted && !(out.contour == mesh_topology_);
+  out.rebase = !out.events.empty() || mismatch;
+  if (mismatch && out.events.empty())
     out.events.push_back({t1, grid.box.center(), TopologyEventKind::kMismatch});
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

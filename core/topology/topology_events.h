@@ -11,8 +11,14 @@
 //    characteristic and number of components with the mesh's: a mismatch the critical points
 //    did not explain is reported as an event of kind "mismatch" at the current time, placed at
 //    the centre of the bounds (the net does not locate it).
-// Either way the mesh is rebuilt (`rebase`) only when the contour's topology differs from the
-// mesh's, since the rebuilt mesh is that contour, refined.
+// The grid's contour is piecewise linear: within about half the Hessian times a cell diagonal
+// squared of a critical point's value it may already show (or still miss) the crossing -- two
+// blobs joined through one tetrahedron before they touch, a new neck thinner than a cell. While
+// a critical point is that close to zero the contour is not trusted: the net stays silent, and
+// what the mesh must become is the Euler characteristic Morse theory gives for the events
+// (`expected_euler`; an i-handle changes the surface's characteristic by 2 (-1)^i). Otherwise
+// the contour's topology is what the mesh must have. The mesh is changed (`rebase`) when an event
+// happened or a trusted contour disagrees with it.
 #pragma once
 
 #include <string>
@@ -38,8 +44,10 @@ MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_
 
 struct TopologyCheck {
   std::vector<TopologyEvent> events;
-  bool rebase = false;          // the contour's topology differs from the mesh's
+  bool rebase = false;          // the mesh's topology must change
   MeshTopologySummary contour;  // of F's zero set on the grid, now
+  bool contour_trusted = true;  // no critical point within the grid's resolution of F = 0
+  long expected_euler = 0;      // the mesh's, changed by the events (Morse theory)
   double seconds = 0.0;         // what the check cost
 };
 

@@ -139,6 +139,7 @@ TEST(MriInputs, ClosingBelowTwoMillimetresIsRefusedBeforeLoading) {
               std::string::npos)
         << bad.err;
     EXPECT_NE(bad.err.find("refinement cannot follow"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("give 2 to keep the most sulci"), std::string::npos) << bad.err;
     EXPECT_EQ(lines(bad.err), 1u) << bad.err;
     EXPECT_LT(elapsed, 5.0) << value << ": the volume was loaded before refusing";
   }

@@ -74,12 +74,6 @@ TEST(ViewerUnderXvfb, ScriptedRunWritesScreenshotWithPanelAndMesh) {
 
 using Outcome = test::XvfbRun;
 
-// A command without a display (ffprobe), its output to `log`.
-Outcome run(const std::string& command, const fs::path& log) {
-  const int raw = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::slurp_text(log)};
-}
-
 // The viewer under a fresh virtual display, with `options` (after `env`, e.g. "env PATH=...").
 Outcome run_viewer(const std::string& options, const fs::path& log, const std::string& env = "") {
   return test::run_under_xvfb(env + " " + test::viewer_command(options), log);
@@ -98,11 +92,11 @@ TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
   ASSERT_TRUE(fs::exists(video)) << r.output;
   EXPECT_FALSE(fs::exists(video.string() + ".partial"));
   // An independent reader: ffprobe decodes the file and counts.
-  const Outcome probe =
-      run("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-          "stream=width,height,nb_read_frames -of csv=p=0 '" +
-              video.string() + "'",
-          dir / "probe.txt");
+  const Outcome probe = test::run_logged(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=width,height,nb_read_frames -of csv=p=0 '" +
+          video.string() + "'",
+      dir / "probe.txt");
   ASSERT_EQ(probe.status, 0) << probe.output;
   EXPECT_EQ(probe.output.substr(0, probe.output.find_last_not_of("\n") + 1), "640,480,7");
 }

@@ -5,6 +5,8 @@
 // within the error bound measured densely.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <set>
 #include <string>
 
 #include "core/adapt/adapter.h"
@@ -111,6 +113,74 @@ TEST(TopologyContour, FormulasAloneGiveTheRightTopology) {
         << s.name << ": dense error at (" << dense.worst.transpose() << ")";
     RecordProperty(s.name + "_base_triangles", static_cast<int>(base.n_faces()));
     RecordProperty(s.name + "_adapted_triangles", static_cast<int>(adapter.mesh().n_faces()));
+  }
+}
+
+// A patch's triangles (a disk) need not have a perfect matching: a triangle with an ear on
+// each edge leaves two ears single whatever the matching, and two such centres side by side
+// leave two ears three triangles apart. pair_triangles_mending pairs them all by flips or
+// splits; the patch stays an oriented manifold disk with the same border and area.
+TEST(TopologyContour, MendedPairingPairsDisksWithoutAPerfectMatching) {
+  using Tri = std::array<std::uint32_t, 3>;
+  struct Disk {
+    std::string name;
+    std::vector<Vec3> positions;
+    std::vector<Tri> triangles;
+  };
+  const auto v = [](double x, double y) { return Vec3(x, y, 0); };
+  const std::vector<Disk> disks = {
+      {"star",
+       {v(0, 0), v(1, 0), v(0.5, 0.87), v(0.5, -0.6), v(1.2, 0.8), v(-0.2, 0.8)},
+       {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}, {0, 2, 5}}},
+      {"two stars",
+       {v(0, 0), v(1, 0), v(1, 1), v(0, 1), v(0.5, -0.5), v(-0.5, 0.5), v(1.5, 0.5), v(0.5, 1.5)},
+       {{0, 1, 2}, {0, 2, 3}, {1, 0, 4}, {0, 3, 5}, {2, 1, 6}, {3, 2, 7}}}};
+  const auto signed_area = [](const std::vector<Vec3>& p, const Tri& t) {
+    return 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).z();
+  };
+  const auto border = [](const std::vector<Tri>& triangles) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> directed, open;
+    for (const Tri& t : triangles)
+      for (int i = 0; i < 3; ++i) {
+        const bool fresh = directed.emplace(t[i], t[(i + 1) % 3]).second;
+        EXPECT_TRUE(fresh) << "an edge used twice in one direction";
+      }
+    for (const auto& [a, b] : directed)
+      if (!directed.count({b, a})) open.emplace(a, b);
+    return open;
+  };
+  for (const Disk& disk : disks) {
+    // The plain maximum matching leaves two triangles single.
+    const auto plain = pair_triangles(disk.positions, disk.triangles);
+    EXPECT_EQ(std::count(plain.begin(), plain.end(), -1), 2) << disk.name;
+
+    std::vector<Vec3> positions = disk.positions;
+    std::vector<Tri> triangles = disk.triangles;
+    std::vector<char> exempt(triangles.size(), 0);
+    PairingMendOptions options;
+    options.split_point = [](const Vec3& a, const Vec3& b) { return 0.5 * (a + b); };
+    options.acceptable = [&](const std::vector<Vec3>& p, const Tri& t) {
+      return signed_area(p, t) > 1e-9;
+    };
+    const MendedPairing mended = pair_triangles_mending(positions, triangles, exempt, options);
+    ASSERT_TRUE(mended.complete) << disk.name;
+    EXPECT_GT(mended.flips + mended.splits, 0) << disk.name;
+    ASSERT_EQ(mended.partner.size(), triangles.size());
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      ASSERT_GE(mended.partner[f], 0) << disk.name << ": triangle " << f;
+      EXPECT_EQ(mended.partner[static_cast<std::size_t>(mended.partner[f])],
+                static_cast<std::int64_t>(f));
+    }
+    EXPECT_NO_THROW(refinement_edge_first(triangles, mended.partner)) << disk.name;
+    double area = 0, area_before = 0;
+    for (const Tri& t : triangles) {
+      EXPECT_GT(signed_area(positions, t), 0) << disk.name << ": a triangle turned over";
+      area += signed_area(positions, t);
+    }
+    for (const Tri& t : disk.triangles) area_before += signed_area(disk.positions, t);
+    EXPECT_NEAR(area, area_before, 1e-12) << disk.name;
+    // The split vertices lie on interior edges: the border is the same chain of edges.
+    EXPECT_EQ(border(triangles), border(disk.triangles)) << disk.name;
   }
 }
 

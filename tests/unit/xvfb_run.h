@@ -23,6 +23,12 @@ struct XvfbRun {
   std::string output;  // its stdout and stderr, as written to the log
 };
 
+// Runs the shell command line `command` with its stdout and stderr going to `log`.
+inline XvfbRun run_logged(const std::string& command, const std::filesystem::path& log) {
+  const int raw = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp_text(log)};
+}
+
 // Runs the shell command line `command` under its own display; its output goes to `log`.
 inline XvfbRun run_under_xvfb(const std::string& command, const std::filesystem::path& log,
                               const XvfbOptions& options = {}) {
@@ -30,13 +36,7 @@ inline XvfbRun run_under_xvfb(const std::string& command, const std::filesystem:
       options.kill_after_seconds > 0
           ? "timeout -s KILL " + std::to_string(options.kill_after_seconds) + " "
           : "";
-  const int raw = std::system((timeout + "xvfb-run -a -s '-screen 0 " + options.screen + "' " +
-                               command + " > '" + log.string() + "' 2>&1")
-                                  .c_str());
-  XvfbRun run;
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  run.output = slurp_text(log);
-  return run;
+  return run_logged(timeout + "xvfb-run -a -s '-screen 0 " + options.screen + "' " + command, log);
 }
 
 // A shell script under its own display (the scripted-input tests).

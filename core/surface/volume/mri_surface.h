@@ -46,7 +46,8 @@ inline constexpr double kMinClosingMm = 2.0;
 inline constexpr const char* kClosingHelp =
     "radius in mm of the morphological closing of the brain mask (bridges sulci; by default "
     "5 mm, more for a brain larger than 1.7 L); at least 2: a smaller closing leaves slits "
-    "narrower than the layer's triangles, which refinement cannot follow";
+    "narrower than the layer's triangles, which refinement cannot follow; give 2 to keep the "
+    "most sulci";
 
 class MriSurface final : public ImplicitSurface {
  public:
