@@ -15,8 +15,9 @@ namespace {
 // them (error_model.h). Measured, bound usage (a skipped face's fresh reading's change over
 // its bound, max over 100 steps over [0, 1] at T = 0.002, test_predictive_sampling.cpp):
 // without d, twist 1.4 with a factor 8 (the cubic change on its rims; before the edge peak
-// search the trajectory happened to avoid it: 0.69); with d, 0.14-0.17 with 8, 0.24-0.42 with
-// 4 and 0.19-0.31 with 5 (twist, capsule-bend, sinc, sphere). 5 keeps a margin of 3.
+// search the trajectory happened to avoid it: 0.69); with d, 0.14-0.17 with 8 and 0.24-0.42
+// with 4 (twist, capsule-bend, sinc, sphere). With 5 (this code): twist 0.238, capsule-bend
+// 0.245, sinc 0.242, sphere 0.192: a margin of 4 on the largest.
 constexpr double kSafety = 5.0;
 
 // Over the triangle, max of b_i b_j |b_j - b_i| on one edge's term (at 2 t - 1 = 1 / sqrt 3),
