@@ -320,15 +320,14 @@ void Adapter::publish_repaired() {
   stats_.seconds.split += clock.lap();
 }
 
-bool Adapter::rebuild_from_base() {
+void Adapter::rebuild_from_base(long euler, long components) {
   // As initialize() does, but within a step: every vertex is born now (none survives), local
-  // repairs of this step included. False (the mesh kept) when no base mesh can be placed now.
-  std::optional<Mesh48> base = mid_run_base_mesh();
-  if (!base) return false;
+  // repairs of this step included.
+  Mesh48 base = mid_run_base_mesh(euler, components);
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
-  mesh_ = std::move(*base);
+  mesh_ = std::move(base);
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
   mesh_.add_listener(&predictor_);  // (was missing: split vertices kept a freed id's frame)
@@ -340,7 +339,6 @@ bool Adapter::rebuild_from_base() {
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
   if (options_.structural) split_pass(true);
-  return true;
 }
 
 void Adapter::adopt_repair(const std::vector<Vertex>& born) {
