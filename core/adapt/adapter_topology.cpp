@@ -15,10 +15,12 @@ namespace dynamesh {
 
 void Adapter::watch_topology() {
   topology_.reset();
+  probe_.set_split_fold_guard(false);
   const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_);
   if (!options_.topology_events || !implicit || !implicit->may_change_topology()) return;
   topology_ = std::make_unique<TopologyMonitor>();
   topology_->reset(*implicit, mesh_);
+  probe_.set_split_fold_guard(true);
 }
 
 void Adapter::check_topology() {
