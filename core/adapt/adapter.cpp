@@ -197,6 +197,7 @@ const StepStats& Adapter::step(double t) {
   ++tracker_->current_step;
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
+  probe_.set_split_fold_guard(false);    // until a topology repair (check_topology)
   vertices_at_start_ = mesh_.n_vertices();
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
   // one the paper's whole step, so that no sub-step moves the surface far against the mesh.

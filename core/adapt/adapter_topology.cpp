@@ -15,12 +15,10 @@ namespace dynamesh {
 
 void Adapter::watch_topology() {
   topology_.reset();
-  probe_.set_split_fold_guard(false);
   const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_);
   if (!options_.topology_events || !implicit || !implicit->may_change_topology()) return;
   topology_ = std::make_unique<TopologyMonitor>();
   topology_->reset(*implicit, mesh_);
-  probe_.set_split_fold_guard(true);
 }
 
 void Adapter::check_topology() {
@@ -33,6 +31,10 @@ void Adapter::check_topology() {
   // Locally first; when that cannot be done the whole mesh is rebuilt from F's contour at this
   // time (a global re-base), which the split pass then refines like a first mesh.
   const auto start = std::chrono::steady_clock::now();
+  // Until the step ends, splits next to the new neck or tips are kept from folding
+  // (SurfaceProbe::project_split_vertex): the mesh there is coarse against a feature that
+  // grows from zero.
+  probe_.set_split_fold_guard(true);
   if (!repair_topology_locally(check)) {
     // What the mesh must become (topology_events.h): the trusted contour's topology, else the
     // Euler characteristic Morse theory gives.

@@ -51,8 +51,9 @@ class SurfaceProbe {
   // point is on a wall), the vertex goes instead to the nearest zero of F along the
   // diamond's normal, down into the crease. Without this a bridging edge never gets shorter
   // than the gap it spans and the split queue grows without end.
-  // With the fold guard on (surfaces whose topology may change, issue 16), a place that turns
-  // one of the new faces against grad F is passed over for the next: across a neck thinner
+  // With the fold guard on (the rest of a step in which the mesh's topology was repaired, issue
+  // 16), a place that turns one of the new faces against grad F is passed over for the next,
+  // and when every place does the vertex stays at the edge's midpoint: across a neck thinner
   // than the edges (just after a merge) Newton or the nearest zero along the normal can land
   // on the neck's far wall, and the faces folded there are beyond the fold repair's reach.
   bool project_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
