@@ -247,10 +247,12 @@ TEST(TopologyVariantsCli, IssueBlobsIn20StepsMergeWithoutARebuild) {
 }
 
 // The torus pinched at 40 degrees at t = 0.75, a step time: the event falls on a frame, where
-// the surface is a double cone. The crossing was reported twice (at the re-base on the instant
-// and again at the next step) and the mesh rebuilt twice.
+// the surface is a double cone. The mesh was rebuilt twice (a re-base on the instant that
+// already had the new topology, then the crossing counted again at the next step).
 TEST(TopologyVariantsCli, TorusPinchOnAStepTimeIsReportedOnce) {
-  run_and_judge(torus_pinch("torus-40deg", 0.7, 0.12, 20));
+  Variant v = torus_pinch("torus-40deg", 0.7, 0.12, 20);
+  v.max_rebuilds = 0;  // the event's instant is repaired locally
+  run_and_judge(v);
 }
 
 }  // namespace
