@@ -310,7 +310,7 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
 }
 
 void Adapter::repair(const FoldRepairOptions& options) {
-  const FoldReport r = repair_folds(mesh_, surface_, options);
+  const FoldReport r = repair_folds(mesh_, surface_, options, &fold_screen_);
   stats_.folds_found += r.folded;
   stats_.slivers_found += r.slivers;
   stats_.repair_moves += r.moved;
@@ -330,7 +330,8 @@ void Adapter::publish_repaired() {
     find_bad_faces_around(mesh_, surface_, options_.fold_repair.min_angle_deg,
                           tracker_->rings_changed, folded, slivers);
   else
-    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers,
+                   &fold_screen_);
   tracker_->recording_ring_changes = false;
   stats_.folds_left = folded.size();
   stats_.slivers_left = slivers.size();

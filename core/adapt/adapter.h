@@ -173,6 +173,7 @@ class Adapter {
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
+  FoldScreenBuffers fold_screen_;  // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 
