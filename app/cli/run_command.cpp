@@ -17,6 +17,7 @@
 #include "core/adapt/workload_check.h"
 #include "core/io/atomic_file.h"
 #include "core/io/mesh_export.h"
+#include "core/io/number_text.h"
 #include "core/io/stats_csv.h"
 #include "core/io/vtk_export.h"
 
@@ -24,13 +25,6 @@ namespace dynamesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string format_number(double x) {
-  std::ostringstream out;
-  out.precision(3);
-  out << x;
-  return out.str();
-}
 
 // Long loads (the mri volume: reading, segmenting, distance transform) report progress.
 ProgressCallback progress_printer(const RunOptions& o, std::ostream& log) {
@@ -335,8 +329,8 @@ void fail_if_left_behind(const RunOptions& o, const StepStats& s) {
   const double bound = o.adapt.threshold + o.adapt.epsilon;
   if (o.adapt.geometric || !(s.max_error > bound)) return;
   throw UsageError("--no-geometric: at step " + std::to_string(s.step) + " the mesh is " +
-                   format_number(s.max_error) +
-                   " from the surface, beyond T + eps = " + format_number(bound) +
+                   format_significant(s.max_error, 3) +
+                   " from the surface, beyond T + eps = " + format_significant(bound, 3) +
                    ": without vertex correction splits cannot follow a moving surface (use "
                    "--no-geometric on a static interval, e.g. --steps 0 or --t1 equal to --t0)");
 }

@@ -22,10 +22,7 @@ namespace fs = std::filesystem;
 
 // One text codec per field type.
 std::string encode(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  return format_significant(v, 17);  // enough digits to read the same double back
 }
 std::string encode(float v) {
   return encode(static_cast<double>(v));

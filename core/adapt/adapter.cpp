@@ -214,6 +214,7 @@ const StepStats& Adapter::step(double t) {
   ++tracker_->current_step;
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
+  probe_.set_split_fold_guard(false);    // until a topology repair (check_topology)
   vertices_at_start_ = mesh_.n_vertices();
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
   // one the paper's whole step, so that no sub-step moves the surface far against the mesh.
@@ -226,16 +227,26 @@ const StepStats& Adapter::step(double t) {
   double start = from;
   int done = 0;
   bool replanned = false;
+  // Sub-step k of n ends at start + (t - start) s^2, s = k / n once a topology change replanned
+  // the step (below), else at start + (t - start) k / n.
+  bool graded = false;
   for (int k = 1; k <= n; ++k) {
     const std::size_t repairs = stats_.local_repairs;
     const bool rebuilt = stats_.rebuilt;
-    corrected |= advance(k == n ? t : start + (t - start) * k / n, k == 1 && planned);
+    const double s = static_cast<double>(k) / n;
+    corrected |=
+        advance(k == n ? t : start + (t - start) * (graded ? s * s : s), k == 1 && planned);
     // A topology repair or rebuild within the step (issue 16) replaced the mesh the sub-steps
     // were planned on, next to where the surface moves fastest (a new neck widens, new tips
     // recede, both as the square root of the time since the event): the rest of the step is
-    // planned again on the new mesh (once: a step holds at most 2 * max_substeps sub-steps).
+    // planned again on the new mesh (once: a step holds at most 2 * max_substeps sub-steps),
+    // in sub-steps growing as the square of their number, so that each moves the neck or the
+    // tips alike (sqrt(t - t_event) grows by equal amounts). Equal sub-steps give the first
+    // one after the repair most of the neck's widening: at 20 steps the blobs' merge (x axis)
+    // then left 27 faces folded and the fold net rebuilt the mesh; graded, none.
     if (!replanned && k < n && (stats_.local_repairs != repairs || stats_.rebuilt != rebuilt)) {
       replanned = true;
+      graded = true;
       done += k;
       start = surface_.time();
       const double strain = stats_.motion_strain;
@@ -299,7 +310,7 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
 }
 
 void Adapter::repair(const FoldRepairOptions& options) {
-  const FoldReport r = repair_folds(mesh_, surface_, options);
+  const FoldReport r = repair_folds(mesh_, surface_, options, &fold_screen_);
   stats_.folds_found += r.folded;
   stats_.slivers_found += r.slivers;
   stats_.repair_moves += r.moved;
@@ -319,7 +330,8 @@ void Adapter::publish_repaired() {
     find_bad_faces_around(mesh_, surface_, options_.fold_repair.min_angle_deg,
                           tracker_->rings_changed, folded, slivers);
   else
-    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers,
+                   &fold_screen_);
   tracker_->recording_ring_changes = false;
   stats_.folds_left = folded.size();
   stats_.slivers_left = slivers.size();
@@ -337,15 +349,14 @@ void Adapter::publish_repaired() {
   stats_.seconds.split += clock.lap();
 }
 
-bool Adapter::rebuild_from_base() {
+void Adapter::rebuild_from_base(long euler, long components) {
   // As initialize() does, but within a step: every vertex is born now (none survives), local
-  // repairs of this step included. False (the mesh kept) when no base mesh can be placed now.
-  std::optional<Mesh48> base = mid_run_base_mesh();
-  if (!base) return false;
+  // repairs of this step included.
+  Mesh48 base = mid_run_base_mesh(euler, components);
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
-  mesh_ = std::move(*base);
+  mesh_ = std::move(base);
   mesh_.add_listener(tracker_.get());
   mesh_.add_listener(&samples_);
   mesh_.add_listener(&predictor_);  // (was missing: split vertices kept a freed id's frame)
@@ -357,7 +368,6 @@ bool Adapter::rebuild_from_base() {
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
   if (options_.structural) split_pass(true);
-  return true;
 }
 
 void Adapter::adopt_repair(const std::vector<Vertex>& born) {

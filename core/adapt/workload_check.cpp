@@ -5,16 +5,10 @@
 #include <stdexcept>
 
 #include "core/adapt/workload_estimate.h"
+#include "core/io/number_text.h"
 
 namespace dynamesh {
 namespace {
-
-std::string short_number(double x) {
-  std::ostringstream s;
-  s.precision(2);
-  s << x;
-  return s.str();
-}
 
 std::string whole(double x) {
   return std::to_string(std::llround(x));
@@ -24,27 +18,28 @@ std::string refusal(const WorkloadEstimate& w, const WorkloadBudget& b, const Wo
                     bool problems) {
   if (!w.problem.empty()) return problems ? w.problem : std::string();
   if (w.triangles > b.hopeless * b.max_triangles)
-    return "the surface needs at least about " + short_number(w.triangles) + " triangles at " +
-           words.threshold + " " + short_number(b.threshold) + " (curvature integral " +
-           short_number(w.curvature) + " over area " + short_number(w.area) + "), more than " +
-           words.max_triangles + " " + whole(b.max_triangles) + "; raise " + words.threshold +
-           " or the budget";
+    return "the surface needs at least about " + format_significant(w.triangles, 2) +
+           " triangles at " + words.threshold + " " + format_significant(b.threshold, 2) +
+           " (curvature integral " + format_significant(w.curvature, 2) + " over area " +
+           format_significant(w.area, 2) + "), more than " + words.max_triangles + " " +
+           whole(b.max_triangles) + "; raise " + words.threshold + " or the budget";
   if (b.edge_length > 0) {
     const double needed =
         b.edge_length_share * w.area / (std::sqrt(3.0) / 4.0 * b.edge_length * b.edge_length);
     const std::string& name =
         b.edge_length_from_scene ? words.scene_edge_length : words.edge_length;
     if (needed > b.hopeless * b.max_triangles)
-      return "edges of at most " + name + " " + short_number(b.edge_length) +
-             " need at least about " + short_number(needed) + " triangles over area " +
-             short_number(b.edge_length_share * w.area) + ", more than " + words.max_triangles +
-             " " + whole(b.max_triangles) + "; raise " + name + " or the budget";
+      return "edges of at most " + name + " " + format_significant(b.edge_length, 2) +
+             " need at least about " + format_significant(needed, 2) + " triangles over area " +
+             format_significant(b.edge_length_share * w.area, 2) + ", more than " +
+             words.max_triangles + " " + whole(b.max_triangles) + "; raise " + name +
+             " or the budget";
   }
   if (w.samples > b.max_samples)
-    return "the surface needs about " + short_number(w.samples) + " samples (" + words.density +
-           " " + short_number(b.density) + " over area " + short_number(w.area) + "), more than " +
-           words.max_samples + " " + whole(b.max_samples) + "; lower " + words.density +
-           " or raise the budget";
+    return "the surface needs about " + format_significant(w.samples, 2) + " samples (" +
+           words.density + " " + format_significant(b.density, 2) + " over area " +
+           format_significant(w.area, 2) + "), more than " + words.max_samples + " " +
+           whole(b.max_samples) + "; lower " + words.density + " or raise the budget";
   return {};
 }
 
@@ -80,7 +75,7 @@ std::string workload_refusal(Surface& surface, const WorkloadBudget& budget, dou
     reason =
         refusal(estimate_workload(surface, budget.threshold, budget.density, budget.max_triangles),
                 budget, words, problems);
-    if (!reason.empty()) reason = "at t = " + short_number(t) + ": " + reason;
+    if (!reason.empty()) reason = "at t = " + format_significant(t, 2) + ": " + reason;
   }
   surface.set_time(t_first);
   return reason;

@@ -4,28 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/io/number_text.h"
+
 namespace dynamesh {
 namespace {
-
-std::string where(const Vec3& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
-  return s.str();
-}
-
-// Six significant digits, as where(Vec3): std::to_string's fixed notation printed a 300-digit
-// parameter for a domain of +-1e300.
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
-std::string where(const Vec2& p) {
-  return '(' + number(p.x()) + ", " + number(p.y()) + ')';
-}
 
 double max_curvature(const PrincipalCurvatures& k) {
   return std::max(std::abs(k.k1), std::abs(k.k2));
@@ -43,8 +25,8 @@ WorkloadEstimate parametric_workload(const ParametricSurface& s, int n) {
       const double da = der.su.cross(der.sv).norm() * cell;
       const double k = max_curvature(s.curvatures(uv));
       if (!std::isfinite(da) || !std::isfinite(k) || !der.s.allFinite()) {
-        w.problem =
-            "the surface or its derivatives are not finite (or overflow) at (u, v) = " + where(uv);
+        w.problem = "the surface or its derivatives are not finite (or overflow) at (u, v) = " +
+                    format_point(uv);
         break;
       }
       w.area += da;
@@ -79,10 +61,12 @@ double parametric_refined_cells(const ParametricSurface& s, double threshold, do
                c01 = s.position(q.min + Vec2(0, q.size.y())), c11 = s.position(q.min + q.size);
     const Vec2 half = 0.5 * q.size;
     double deviation = (s.position(q.min + half) - 0.25 * (c00 + c10 + c01 + c11)).norm();
-    deviation = std::max(deviation, (s.position(q.min + Vec2(half.x(), 0)) - 0.5 * (c00 + c10)).norm());
-    deviation = std::max(deviation, (s.position(q.min + Vec2(0, half.y())) - 0.5 * (c00 + c01)).norm());
+    deviation =
+        std::max(deviation, (s.position(q.min + Vec2(half.x(), 0)) - 0.5 * (c00 + c10)).norm());
+    deviation =
+        std::max(deviation, (s.position(q.min + Vec2(0, half.y())) - 0.5 * (c00 + c01)).norm());
     if (!std::isfinite(deviation) || !c11.allFinite()) {
-      problem = "the surface is not finite (or overflows) near (u, v) = " + where(q.min);
+      problem = "the surface is not finite (or overflows) near (u, v) = " + format_point(q.min);
       return leaves;
     }
     if (deviation <= threshold) {
@@ -90,8 +74,9 @@ double parametric_refined_cells(const ParametricSurface& s, double threshold, do
       continue;
     }
     if (half.x() < smallest) {
-      problem = "the surface does not become smooth at any scale near (u, v) = " + where(q.min) +
-                " (a jump or a singularity)";
+      problem =
+          "the surface does not become smooth at any scale near (u, v) = " + format_point(q.min) +
+          " (a jump or a singularity)";
       return leaves;
     }
     for (int k = 0; k < 4; ++k)
@@ -139,7 +124,7 @@ WorkloadEstimate implicit_workload(const ImplicitSurface& s, int n) {
         for (int i = 0; i + di < n; ++i) {
           const double fa = at(i, j, k), fb = at(i + di, j + dj, k + dk);
           if (!std::isfinite(fa) || !std::isfinite(fb)) {
-            w.problem = "F is not finite at " + where(point(i, j, k));
+            w.problem = "F is not finite at " + format_point(point(i, j, k));
             break;
           }
           if ((fa < 0) == (fb < 0)) continue;
@@ -149,12 +134,12 @@ WorkloadEstimate implicit_workload(const ImplicitSurface& s, int n) {
           s.value_gradient(p, g);
           const double k_max = max_curvature(s.curvatures(p));
           if (!g.allFinite() || !std::isfinite(k_max)) {
-            w.problem =
-                "the gradient or curvature of F is not finite on the surface near " + where(p);
+            w.problem = "the gradient or curvature of F is not finite on the surface near " +
+                        format_point(p);
             break;
           }
           if (is_jump(s, a, b, fa, fb)) {
-            w.problem = "F jumps across zero near " + where(p) +
+            w.problem = "F jumps across zero near " + format_point(p) +
                         " (a step or a pole, not a surface a mesh can follow)";
             break;
           }
@@ -191,7 +176,8 @@ WorkloadEstimate estimate_workload(const Surface& surface, double threshold, dou
   }
   w.samples = density * w.area;
   if (w.problem.empty() && !(std::isfinite(w.triangles) && std::isfinite(w.samples)))
-    w.problem = "the surface's area or curvature overflows (area " + number(w.area) + ")";
+    w.problem =
+        "the surface's area or curvature overflows (area " + format_significant(w.area, 6) + ")";
   return w;
 }
 

@@ -3,6 +3,7 @@
 #include <nifti1_io.h>
 
 #include "core/io/byte_stream.h"
+#include "core/io/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -139,13 +140,6 @@ const char* placement_name(VoxelPlacement p) {
   return p == VoxelPlacement::kSform ? "sform" : p == VoxelPlacement::kQform ? "qform" : "pixdim";
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 // A placement the pipeline can work with: finite, each voxel edge between kMinVoxelMm and
 // kMaxVoxelMm, and not nearly singular. The volume of a voxel over the product of its edge
 // lengths is 1 for a rectangular voxel and sin(angle) for a sheared pair of axes; below
@@ -161,17 +155,17 @@ void check_placement(const std::filesystem::path& path, const VoxelGrid& grid,
     const double size = grid.linear.col(a).norm();
     // The header stores float: 0.01f is 0.0099999998.
     if (!(size >= kMinVoxelMm * (1 - 1e-6) && size <= kMaxVoxelMm * (1 + 1e-6))) {
-      fail(path, "voxel size " + number(size) + " mm along axis " + "ijk"[a] + from +
-                     " is outside [" + number(kMinVoxelMm) + ", " + number(kMaxVoxelMm) +
-                     "] mm");
+      fail(path, "voxel size " + format_significant(size, 6) + " mm along axis " + "ijk"[a] + from +
+                     " is outside [" + format_significant(kMinVoxelMm, 6) + ", " +
+                     format_significant(kMaxVoxelMm, 6) + "] mm");
     }
     edges *= size;
   }
   const double shape = std::abs(grid.linear.determinant()) / edges;
   if (!(shape >= kMinVoxelShape)) {
     fail(path, "voxel-to-world transform is singular or nearly so" + from +
-                   ": voxel volume / product of edge lengths = " + number(shape) + " (at least " +
-                   number(kMinVoxelShape) + ")");
+                   ": voxel volume / product of edge lengths = " + format_significant(shape, 6) +
+                   " (at least " + format_significant(kMinVoxelShape, 6) + ")");
   }
 }
 
@@ -190,8 +184,10 @@ VoxelGrid placement(const std::filesystem::path& path, const nifti_1_header& h,
   } else if (h.qform_code > 0) {
     // nifticlib takes a pixdim that is not positive as 1; a non-finite one is a broken header.
     for (int i = 1; i <= 3; ++i)
-      if (!std::isfinite(h.pixdim[i])) fail(path, "pixdim[" + std::to_string(i) + "] is non-finite (qform)");
-    for (const float q : {h.quatern_b, h.quatern_c, h.quatern_d, h.qoffset_x, h.qoffset_y, h.qoffset_z})
+      if (!std::isfinite(h.pixdim[i]))
+        fail(path, "pixdim[" + std::to_string(i) + "] is non-finite (qform)");
+    for (const float q :
+         {h.quatern_b, h.quatern_c, h.quatern_d, h.qoffset_x, h.qoffset_y, h.qoffset_z})
       if (!std::isfinite(q)) fail(path, "qform quaternion or offset is non-finite");
     const float qfac = h.pixdim[0] < 0.0f ? -1.0f : 1.0f;
     const mat44 m =
@@ -306,7 +302,8 @@ NiftiVolume read_checked(const std::filesystem::path& path, bool gzipped,
   const double offset = header.vox_offset;
   if (!std::isfinite(offset) || offset < kNifti1HeaderSize + 4 || offset != std::floor(offset) ||
       offset > 1e15) {
-    fail(path, "invalid vox_offset " + number(offset) + " (a whole number, at least 352)");
+    fail(path,
+         "invalid vox_offset " + format_significant(offset, 6) + " (a whole number, at least 352)");
   }
   result.datatype = type.code;
   result.datatype_name = type.name;
@@ -318,12 +315,12 @@ NiftiVolume read_checked(const std::filesystem::path& path, bool gzipped,
   result.volume.grid = placement(path, header, result.placement);
   result.volume.grid.dims = dims;
   // Its far corner, not only the origin: a broken offset or a huge volume of big voxels.
-  const double reach =
-      result.volume.grid.offset.norm() +
-      result.volume.grid.linear.norm() * static_cast<double>(*std::max_element(dims.begin(), dims.end()));
+  const double reach = result.volume.grid.offset.norm() +
+                       result.volume.grid.linear.norm() *
+                           static_cast<double>(*std::max_element(dims.begin(), dims.end()));
   if (!(reach < kMaxWorldMm)) {
-    fail(path, "voxel-to-world transform places the volume " + number(reach) +
-                   " mm from the origin (at most " + number(kMaxWorldMm) + ")");
+    fail(path, "voxel-to-world transform places the volume " + format_significant(reach, 6) +
+                   " mm from the origin (at most " + format_significant(kMaxWorldMm, 6) + ")");
   }
 
   const std::size_t voxels = result.volume.grid.count();
@@ -333,8 +330,8 @@ NiftiVolume read_checked(const std::filesystem::path& path, bool gzipped,
   const auto start = static_cast<std::uint64_t>(offset);
   if (!gzipped && start + bytes > in.file_size()) {
     fail(path, "truncated data: the header's dimensions " + std::to_string(dims[0]) + " x " +
-                   std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " of " +
-                   type.name + " need " + std::to_string(bytes) + " bytes after offset " +
+                   std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " of " + type.name +
+                   " need " + std::to_string(bytes) + " bytes after offset " +
                    std::to_string(start) + ", the file has " +
                    std::to_string(in.file_size() > start ? in.file_size() - start : 0));
   }

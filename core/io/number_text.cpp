@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <sstream>
 
 namespace dynamesh {
 
@@ -13,14 +14,29 @@ std::optional<double> parse_finite_number(const std::string& text) {
   return value;
 }
 
-std::optional<long long> parse_whole_number(const std::string& text, long long min,
-                                            long long max) {
+std::optional<long long> parse_whole_number(const std::string& text, long long min, long long max) {
   const std::optional<double> value = parse_finite_number(text);
   // Beyond 2^53 doubles skip whole numbers; no option needs that much.
   if (!value || *value != std::floor(*value) || std::abs(*value) > 9e15) return {};
   const auto n = static_cast<long long>(*value);
   if (n < min || n > max) return {};
   return n;
+}
+
+std::string format_significant(double x, int digits) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << x;
+  return out.str();
+}
+
+std::string format_point(const Vec3& p) {
+  return '(' + format_significant(p.x(), 6) + ", " + format_significant(p.y(), 6) + ", " +
+         format_significant(p.z(), 6) + ')';
+}
+
+std::string format_point(const Vec2& p) {
+  return '(' + format_significant(p.x(), 6) + ", " + format_significant(p.y(), 6) + ')';
 }
 
 }  // namespace dynamesh

@@ -1,16 +1,27 @@
 // Strict reading of numbers typed by a user (dynamesh-cli, the viewer's command line and its
 // saved settings): the whole text must be one finite number in plain decimal notation, and
 // whole numbers must fit the range asked for. Nothing wraps ("4294967297" is not 1), nothing
-// is partially read ("12abc"), and "inf", "nan" and the empty string are refused.
+// is partially read ("12abc"), and "inf", "nan" and the empty string are refused. And the one way
+// numbers are written into messages and saved settings.
 #pragma once
 
 #include <optional>
 #include <string>
 
+#include "core/geometry/vector_types.h"
+
 namespace dynamesh {
 
 std::optional<double> parse_finite_number(const std::string& text);
-std::optional<long long> parse_whole_number(const std::string& text, long long min,
-                                            long long max);
+std::optional<long long> parse_whole_number(const std::string& text, long long min, long long max);
+
+// `x` with `digits` significant digits, in the shortest of fixed and scientific notation (the
+// stream's default): messages stay short for any magnitude, where std::to_string's fixed
+// notation printed a 300-digit number for 1e300.
+std::string format_significant(double x, int digits);
+
+// "(0.5, -1, 2)" with 6 significant digits: where a message says a point is.
+std::string format_point(const Vec3& p);
+std::string format_point(const Vec2& p);
 
 }  // namespace dynamesh

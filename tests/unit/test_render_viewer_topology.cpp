@@ -98,8 +98,7 @@ int events_reported(const std::string& log) {
 }
 
 TEST(ViewerTopology, BlobsMergeAndSplitFramesRenderAndTheEventsAreReported) {
-  ASSERT_EQ(std::system("command -v xvfb-run >/dev/null 2>&1"), 0)
-      << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_topology");
   // t = 0.1 .. 0.9 in 16 steps of 0.05: the merge (t = 0.1515) falls in step 2, the split
   // (t = 0.8485) in step 15; frame k shows step k. The camera looks down from above (-y), so
@@ -132,8 +131,7 @@ TEST(ViewerTopology, BlobsMergeAndSplitFramesRenderAndTheEventsAreReported) {
 }
 
 TEST(ViewerTopology, TorusPinchFramesShowTheHoleCloseUpAndTheEventIsReported) {
-  ASSERT_EQ(std::system("command -v xvfb-run >/dev/null 2>&1"), 0)
-      << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_topology_torus");
   // The torus pinch, t = 0.45, 0.5, 0.55, seen along the torus's axis (z): the hole
   // shows through before the pinch and opens to the outside after it.

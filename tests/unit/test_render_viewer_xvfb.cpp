@@ -21,16 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool on_path(const std::string& program) {
-  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
-}
-
 struct Rgb {
   int r, g, b;
 };
 
 TEST(ViewerUnderXvfb, ScriptedRunWritesScreenshotWithPanelAndMesh) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = fs::path(DYNAMESH_BINARY_DIR) / "test_output" / "viewer_xvfb";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -80,8 +76,8 @@ Outcome run_viewer(const std::string& options, const fs::path& log, const std::s
 }
 
 TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
-  ASSERT_TRUE(on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
+  ASSERT_TRUE(test::on_path("ffprobe")) << "ffprobe not found: install the Debian package ffmpeg";
   const fs::path dir = test::render_scratch("viewer_record");
   const fs::path video = dir / "run.mp4";
   const Outcome r = run_viewer(
@@ -102,7 +98,7 @@ TEST(ViewerUnderXvfb, RecordsOneVideoFramePerStepThroughFfmpeg) {
 }
 
 TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_record_png");
   // A PATH with no ffmpeg on it (the viewer needs nothing else from PATH).
   const Outcome r = run_viewer("--scene sinc --frames 4 --width 320 --height 240 --record '" +
@@ -126,7 +122,7 @@ TEST(ViewerUnderXvfb, WithoutFfmpegRecordsAPngSequence) {
 }
 
 TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_settings_runs");
   const fs::path state = dir / "config" / "viewer.conf";
   const std::string shot = " --screenshot '" + (dir / "shot.png").string() + "'";
@@ -154,7 +150,7 @@ TEST(ViewerUnderXvfb, SettingsPersistBetweenRuns) {
 }
 
 TEST(ViewerUnderXvfb, BadParameterShowsAnErrorInsteadOfCrashing) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_bad_parameter");
   const Outcome r = run_viewer("--scene sinc --param no_such=1 --frames 2 --screenshot '" +
                                    (dir / "shot.png").string() + "'",
@@ -183,7 +179,7 @@ int red_text_pixels(const fs::path& png) {
 }
 
 TEST(ViewerUnderXvfb, TypedFormulaRunsWithItsPanel) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_expr");
   const Outcome r = run_viewer(
       "--scene expr --implicit 'x^2 + y^2/(1+0.5*sin(2*pi*t)) + z^2 - 1' "
@@ -204,7 +200,7 @@ TEST(ViewerUnderXvfb, TypedFormulaRunsWithItsPanel) {
 }
 
 TEST(ViewerUnderXvfb, BrokenFormulaShowsItsErrorInRedInsteadOfCrashing) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_expr_broken");
   for (const char* formula : {"sqrt(x^2+y^2+z^2 - 1", "x^2 + y^2 + z^2 + 1"}) {
     const Outcome r =
@@ -220,7 +216,7 @@ TEST(ViewerUnderXvfb, BrokenFormulaShowsItsErrorInRedInsteadOfCrashing) {
 }
 
 TEST(ViewerUnderXvfb, MeshReachesTheGpuOncePerStepNotPerFrame) {
-  ASSERT_TRUE(on_path("xvfb-run")) << "xvfb-run not found: install the Debian package xvfb";
+  ASSERT_TRUE(test::on_path("xvfb-run")) << test::kXvfbMissing;
   const fs::path dir = test::render_scratch("viewer_uploads");
   // Turning the view for a second without playing: many frames, one upload.
   const Outcome still =

@@ -13,6 +13,13 @@
 
 namespace dynamesh::test {
 
+// Whether `program` is on PATH (the viewer tests need xvfb-run; one needs ffprobe).
+inline bool on_path(const std::string& program) {
+  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+inline constexpr const char* kXvfbMissing = "xvfb-run not found: install the Debian package xvfb";
+
 struct XvfbOptions {
   std::string screen = "1280x800x24";  // the virtual screen, WxHxDepth
   int kill_after_seconds = 0;          // > 0: `timeout -s KILL` ends a hang (status 137)

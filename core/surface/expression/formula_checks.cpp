@@ -17,20 +17,6 @@ std::string time_text(double t) {
 
 }  // namespace
 
-std::string format_point(const Vec3& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
-  return s.str();
-}
-
-std::string format_point(const Vec2& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << '(' << p.x() << ", " << p.y() << ')';
-  return s.str();
-}
-
 ImplicitScan scan_implicit(const Expression& f, const std::string& formula_text, const Box3& box,
                            double t, int n, const Vec3* extra_point) {
   const std::string what = "implicit formula '" + formula_text + "'";

@@ -10,14 +10,11 @@
 #include <string>
 
 #include "core/geometry/vector_types.h"
+#include "core/io/number_text.h"
 #include "core/surface/expression/expression.h"
 #include "core/surface/surface.h"
 
 namespace dynamesh {
-
-// "(0.5, -1, 2)" with 6 significant digits.
-std::string format_point(const Vec3& p);
-std::string format_point(const Vec2& p);
 
 // What a scan of F(x, y, z, t) over a box found.
 struct ImplicitScan {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/number_text.h"
 #include "core/surface/volume/distance_transform.h"
 
 namespace dynamesh {
@@ -55,12 +56,6 @@ std::vector<Piece> label_pieces(const MaskVolume& mask, std::vector<std::uint32_
   return pieces;
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(3) << x;
-  return s.str();
-}
-
 }  // namespace
 
 MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& options,
@@ -98,10 +93,11 @@ MaskVolume extract_brain(const MaskVolume& head, const BrainExtractionOptions& o
     throw std::invalid_argument(
         "brain extraction: no brain-like piece in this head (" +
         (best == 0
-             ? std::string("every piece left by a ") + number(options.erosion_mm) +
+             ? std::string("every piece left by a ") + format_significant(options.erosion_mm, 3) +
                    " mm erosion touches the volume's border"
-             : "the largest piece holds " + number(ml) + " ml, outside " +
-                   number(options.min_volume_ml) + "-" + number(options.max_volume_ml) + " ml") +
+             : "the largest piece holds " + format_significant(ml, 3) + " ml, outside " +
+                   format_significant(options.min_volume_ml, 3) + "-" +
+                   format_significant(options.max_volume_ml, 3) + " ml") +
         "); pass a brain mask with --mask FILE (e.g. from FSL BET or SynthStrip)");
   }
   return brain;

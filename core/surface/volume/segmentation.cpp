@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/number_text.h"
 #include "core/surface/volume/connected_components.h"
 #include "core/surface/volume/distance_transform.h"
 #include "core/surface/volume/gaussian_smoothing.h"
@@ -41,12 +42,6 @@ double border_contact_mm2(const MaskVolume& mask) {
   return area;
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(3) << x;
-  return s.str();
-}
-
 constexpr const char* kHint =
     "; is this a skull-stripped brain? pass a brain mask with --mask FILE (e.g. from FSL BET "
     "or SynthStrip)";
@@ -58,16 +53,17 @@ void check_plausible(const MaskVolume& mask, const SegmentationOptions& o) {
       throw std::invalid_argument(
           "segmentation: the brain component touches the volume's border "
           "over " +
-          number(contact / 100.0) + " cm^2 (at most " + number(o.max_border_contact_mm2 / 100.0) +
-          ")" + kHint);
+          format_significant(contact / 100.0, 3) + " cm^2 (at most " +
+          format_significant(o.max_border_contact_mm2 / 100.0, 3) + ")" + kHint);
   }
   const double ml = static_cast<double>(std::count(mask.values.begin(), mask.values.end(), 1)) *
                     mask.grid.voxel_volume() / 1000.0;
   if ((o.min_volume_ml > 0.0 && ml < o.min_volume_ml) ||
       (o.max_volume_ml > 0.0 && ml > o.max_volume_ml))
-    throw std::invalid_argument("segmentation: the brain component holds " + number(ml) +
-                                " ml, outside the plausible " + number(o.min_volume_ml) + "-" +
-                                number(o.max_volume_ml) + " ml" + kHint);
+    throw std::invalid_argument("segmentation: the brain component holds " +
+                                format_significant(ml, 3) + " ml, outside the plausible " +
+                                format_significant(o.min_volume_ml, 3) + "-" +
+                                format_significant(o.max_volume_ml, 3) + " ml" + kHint);
 }
 
 double closing_radius(const MaskVolume& mask, const SegmentationOptions& o) {
@@ -88,7 +84,8 @@ Segmentation clean_mask(MaskVolume mask, const SegmentationOptions& options,
   s.components = keep_largest_component(s.mask);
   if (s.components == 0)
     throw std::invalid_argument("segmentation: no voxel" + where + " is left by the " +
-                                number(options.opening_radius_mm) + " mm opening" + kHint);
+                                format_significant(options.opening_radius_mm, 3) + " mm opening" +
+                                kHint);
   if (may_extract && options.extract_brain && options.max_border_contact_mm2 > 0.0 &&
       border_contact_mm2(s.mask) > options.max_border_contact_mm2) {
     s.mask = extract_brain(s.mask, options.extraction, squared);
