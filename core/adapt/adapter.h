@@ -182,6 +182,7 @@ class Adapter {
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
   std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
+  FoldScreenBuffers fold_screen_;  // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 

@@ -117,9 +117,12 @@ std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f, const V
 }  // namespace
 
 void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
-                    std::vector<Face>& folded, std::vector<Face>& slivers) {
+                    std::vector<Face>& folded, std::vector<Face>& slivers,
+                    FoldScreenBuffers* buffers) {
   folded.clear();
   slivers.clear();
+  FoldScreenBuffers local;
+  FoldScreenBuffers& b = buffers ? *buffers : local;
   // Mesh-only screen: a face turned against its corners' area-weighted mesh normals (more
   // than 60 degrees; a smooth adapted mesh bends far less between neighbours), or below the
   // angle floor. Only those evaluate the surface.
@@ -127,39 +130,41 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   // hence the verdicts, are those of a serial pass), each vertex normal's length once.
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   const auto nv = static_cast<std::int64_t>(mesh.vertex_capacity());
-  std::vector<Vec3> normal(static_cast<std::size_t>(n));
+  b.normal.resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
-    if (mesh.is_alive(f)) normal[static_cast<std::size_t>(i)] = face_normal(mesh, f);
+    if (mesh.is_alive(f)) b.normal[static_cast<std::size_t>(i)] = face_normal(mesh, f);
   }
-  std::vector<Vec3> vertex_normal(static_cast<std::size_t>(nv), Vec3::Zero());
+  b.vertex_normal.assign(static_cast<std::size_t>(nv), Vec3::Zero());
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
-    for (Vertex v : mesh.vertices(f)) vertex_normal[v.idx] += normal[static_cast<std::size_t>(i)];
+    for (Vertex v : mesh.vertices(f))
+      b.vertex_normal[v.idx] += b.normal[static_cast<std::size_t>(i)];
   }
-  std::vector<double> vertex_norm(static_cast<std::size_t>(nv));
+  b.vertex_norm.resize(static_cast<std::size_t>(nv));
 #pragma omp parallel for schedule(static) if (nv > kParallelMin)
   for (std::int64_t i = 0; i < nv; ++i)
-    vertex_norm[static_cast<std::size_t>(i)] = vertex_normal[static_cast<std::size_t>(i)].norm();
+    b.vertex_norm[static_cast<std::size_t>(i)] =
+        b.vertex_normal[static_cast<std::size_t>(i)].norm();
   const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
-  std::vector<std::uint8_t> kind(static_cast<std::size_t>(n), 0);  // 1 folded, 2 sliver
+  b.kind.assign(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
     const auto v = mesh.vertices(f);
-    const Vec3 corner_normal[3] = {vertex_normal[v[0].idx], vertex_normal[v[1].idx],
-                                   vertex_normal[v[2].idx]};
-    const double corner_norm[3] = {vertex_norm[v[0].idx], vertex_norm[v[1].idx],
-                                   vertex_norm[v[2].idx]};
-    kind[static_cast<std::size_t>(i)] =
-        verdict(mesh, surface, f, normal[static_cast<std::size_t>(i)], corner_normal, corner_norm,
+    const Vec3 corner_normal[3] = {b.vertex_normal[v[0].idx], b.vertex_normal[v[1].idx],
+                                   b.vertex_normal[v[2].idx]};
+    const double corner_norm[3] = {b.vertex_norm[v[0].idx], b.vertex_norm[v[1].idx],
+                                   b.vertex_norm[v[2].idx]};
+    b.kind[static_cast<std::size_t>(i)] =
+        verdict(mesh, surface, f, b.normal[static_cast<std::size_t>(i)], corner_normal, corner_norm,
                 cos_limit);
   }
   for (std::int64_t i = 0; i < n; ++i) {
-    const auto k = kind[static_cast<std::size_t>(i)];
+    const auto k = b.kind[static_cast<std::size_t>(i)];
     if (k == 1) folded.push_back(Face(static_cast<std::uint32_t>(i)));
     if (k == 2) slivers.push_back(Face(static_cast<std::uint32_t>(i)));
   }
@@ -200,11 +205,12 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
   }
 }
 
-FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options) {
+FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options,
+                        FoldScreenBuffers* buffers) {
   FoldReport report;
   if (!options.enabled) return report;
   std::vector<Face> folded, slivers;
-  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers);
+  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers, buffers);
   report.folded = folded.size();
   report.slivers = slivers.size();
   if (folded.empty() && slivers.empty()) return report;  // the usual case: one pass, no repair
@@ -231,7 +237,7 @@ FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOp
     }
     active.swap(next);
   }
-  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers);
+  find_bad_faces(mesh, surface, options.min_angle_deg, folded, slivers, buffers);
   report.remaining_folded = folded.size();
   report.remaining_slivers = slivers.size();
   return report;

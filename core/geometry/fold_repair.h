@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh/mesh48.h"
@@ -38,9 +39,23 @@ struct FoldReport {
   std::size_t remaining_folded = 0, remaining_slivers = 0;
 };
 
+// The screen's per-face and per-vertex scratch arrays (about 40 bytes per face and vertex, 40 MB
+// at 10^6 triangles), kept by a caller that screens every step: allocated anew on every call
+// they were mapped and unmapped each time (blocks this large are mapped on their own,
+// allocator_policy.h), and the kernel's page faults and page clearing cost more than the
+// screen's arithmetic (issue 17's profile at 10^6 triangles).
+struct FoldScreenBuffers {
+  std::vector<Vec3> normal;         // per face slot: its area-weighted normal
+  std::vector<Vec3> vertex_normal;  // per vertex slot: its faces' normals, summed in face order
+  std::vector<double> vertex_norm;  // ... and that sum's length
+  std::vector<std::uint8_t> kind;   // per face slot: 1 folded, 2 sliver, 0 neither
+};
+
 // Faces that are folded (`folded`) or slivers (`slivers`), checked as described above.
+// `buffers`: scratch kept between calls (none: allocated for this call); same verdicts.
 void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
-                    std::vector<Face>& folded, std::vector<Face>& slivers);
+                    std::vector<Face>& folded, std::vector<Face>& slivers,
+                    FoldScreenBuffers* buffers = nullptr);
 
 // find_bad_faces' verdicts on the faces with a corner in `vertices` only, bit for bit (each
 // corner's mesh normal is summed over its faces in the same order). Where only those
@@ -50,6 +65,7 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
                            const std::vector<Vertex>& vertices, std::vector<Face>& folded,
                            std::vector<Face>& slivers);
 
-FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options);
+FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options,
+                        FoldScreenBuffers* buffers = nullptr);
 
 }  // namespace dynamesh

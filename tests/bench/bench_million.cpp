@@ -2,11 +2,21 @@
 // machine). T = 9e-6 gives about 10^6 triangles (T = 9e-5 about 10^5, bench_adapter.cpp);
 // t steps by 1e-3 from 0.5 after two warm-up steps (predictive sampling needs references).
 // Reported: the median step's wall-clock and process CPU time (the CPU time is the work,
-// what a shared machine's other load does not inflate) and each phase's median.
+// what a shared machine's other load does not inflate) and each phase's median; the share of
+// faces measured, and the share with a vertex that moved more than a quarter of the face's
+// shortest edge this step (ErrorPredictor::kMaxMoveFraction: those are measured whatever
+// their bound says).
+// BM_MillionFacePass: why the per-face passes cost what they do at this size. One pass over
+// the adapted mesh's faces as the step's passes are built (read the three corners, a cross
+// product, add it into the three corners' sums: compute_ring_centroids, find_bad_faces),
+// timed in the mesh's own numbering and in the same mesh renumbered along a Morton curve.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include "core/adapt/adapter.h"
@@ -21,22 +31,52 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
-  auto surface = make_scene("capsule-bend");
-  surface->set_time(0.5);
-  AdaptOptions o;
-  o.threshold = threshold;
-  o.epsilon = threshold / 4;
-  o.max_triangles = 4'000'000;
-  Adapter adapter(*surface, o, default_criteria("capsule-bend", 0.0, o, 0.0));
-  adapter.initialize();
+// Capsule-bend adapted at t = 0.5 to `threshold`, then stepped twice by 1e-3 (to 0.502).
+struct MillionScene {
+  explicit MillionScene(double threshold) : surface(make_scene("capsule-bend")) {
+    surface->set_time(0.5);
+    AdaptOptions o;
+    o.threshold = threshold;
+    o.epsilon = threshold / 4;
+    o.max_triangles = 4'000'000;
+    adapter = std::make_unique<Adapter>(*surface, o, default_criteria("capsule-bend", 0.0, o, 0.0));
+    adapter->initialize();
+    for (int i = 0; i < 2; ++i) adapter->step(t += 1e-3);
+  }
+  std::unique_ptr<Surface> surface;
+  std::unique_ptr<Adapter> adapter;
   double t = 0.5;
-  for (int i = 0; i < 2; ++i) adapter.step(t += 1e-3);
+};
+
+// Faces with a corner that moved more than a quarter of the face's shortest edge since
+// `before` (new corners count as moved), as a share of all faces.
+double moved_share(const Mesh48& mesh, const std::vector<Vec3>& before) {
+  std::size_t moved = 0;
+  for (const Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    double shortest = 1e300, farthest = 0.0;
+    for (int e = 0; e < 3; ++e) {
+      shortest = std::min(shortest,
+                          (mesh.position(v[(e + 1) % 3]) - mesh.position(v[(e + 2) % 3])).norm());
+      farthest = std::max(farthest, v[e].idx < before.size()
+                                        ? (mesh.position(v[e]) - before[v[e].idx]).norm()
+                                        : 1e300);
+    }
+    moved += farthest > 0.25 * shortest;
+  }
+  return static_cast<double>(moved) / static_cast<double>(mesh.n_faces());
+}
+
+void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
+  MillionScene scene(threshold);
+  Adapter& adapter = *scene.adapter;
   std::vector<double> wall, cpu, project, smooth, sample, weld, split;
+  double measured = 0, faces = 0, moved = 0;
   for (auto _ : state) {
+    const std::vector<Vec3> before = adapter.mesh().positions();
     const double cpu0 = process_cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
-    const StepStats& st = adapter.step(t += 1e-3);
+    const StepStats& st = adapter.step(scene.t += 1e-3);
     wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
     cpu.push_back(process_cpu_seconds() - cpu0);
     project.push_back(st.seconds.project);
@@ -44,6 +84,9 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
     sample.push_back(st.seconds.sample);
     weld.push_back(st.seconds.weld);
     split.push_back(st.seconds.split);
+    measured += static_cast<double>(st.faces_measured);
+    faces += static_cast<double>(st.triangles);
+    moved += moved_share(adapter.mesh(), before) * static_cast<double>(st.triangles);
   }
   state.counters["triangles"] = static_cast<double>(adapter.mesh().n_faces());
   state.counters["median_step_ms"] = 1e3 * median(wall);
@@ -53,11 +96,96 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   state.counters["sample_ms"] = 1e3 * median(sample);
   state.counters["weld_ms"] = 1e3 * median(weld);
   state.counters["split_ms"] = 1e3 * median(split);
+  state.counters["measured_share"] = measured / faces;
+  state.counters["moved_share"] = moved / faces;
 }
 
 BENCHMARK_CAPTURE(BM_MillionTriangleStep, capsule_T9e - 6, 9e-6)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
+
+// Interleaves the bits of a 21-bit integer with two zero bits each (Morton code, one axis).
+std::uint64_t spread_bits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+using Triangles = std::vector<std::array<std::uint32_t, 3>>;
+
+// The pass: each face's (area-weighted) normal added into its three corners' sums.
+void face_pass(const Triangles& faces, const std::vector<Vec3>& p, std::vector<Vec3>& sum) {
+  std::fill(sum.begin(), sum.end(), Vec3::Zero());
+  for (const auto& f : faces) {
+    const Vec3 n = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
+    for (const std::uint32_t v : f) sum[v] += n;
+  }
+}
+
+void BM_MillionFacePass(benchmark::State& state, double threshold) {
+  MillionScene scene(threshold);
+  const Mesh48& mesh = scene.adapter->mesh();
+  Triangles own;
+  for (const Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    own.push_back({v[0].idx, v[1].idx, v[2].idx});
+  }
+  const std::vector<Vec3>& p = mesh.positions();
+  // Morton order: vertices by their position's code in the bounding box, faces by their
+  // lowest-numbered corner.
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vertex v : mesh.live_vertices()) {
+    lo = lo.cwiseMin(p[v.idx]);
+    hi = hi.cwiseMax(p[v.idx]);
+  }
+  std::vector<std::uint64_t> code(p.size(), 0);
+  for (const Vertex v : mesh.live_vertices())
+    for (int a = 0; a < 3; ++a)
+      code[v.idx] |= spread_bits(static_cast<std::uint64_t>((p[v.idx][a] - lo[a]) /
+                                                            (hi[a] - lo[a] + 1e-300) * 2097151.0))
+                     << a;
+  std::vector<std::uint32_t> order(p.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return code[a] < code[b]; });
+  std::vector<std::uint32_t> renamed(p.size());
+  for (std::size_t i = 0; i < order.size(); ++i) renamed[order[i]] = static_cast<std::uint32_t>(i);
+  std::vector<Vec3> morton_p(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) morton_p[renamed[i]] = p[i];
+  Triangles morton = own;
+  for (auto& f : morton)
+    for (auto& v : f) v = renamed[v];
+  std::sort(morton.begin(), morton.end(), [](const auto& a, const auto& b) {
+    return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+  });
+  std::vector<Vec3> sum(p.size());
+  std::vector<double> own_s, morton_s;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    face_pass(own, p, sum);
+    own_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(sum.data());
+    t0 = std::chrono::steady_clock::now();
+    face_pass(morton, morton_p, sum);
+    morton_s.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(sum.data());
+  }
+  double spread = 0.0;
+  for (const auto& f : own)
+    spread += *std::max_element(f.begin(), f.end()) - *std::min_element(f.begin(), f.end());
+  state.counters["triangles"] = static_cast<double>(own.size());
+  state.counters["own_numbering_ms"] = 1e3 * median(own_s);
+  state.counters["morton_ms"] = 1e3 * median(morton_s);
+  state.counters["corner_id_spread"] = spread / static_cast<double>(own.size());
+}
+
+BENCHMARK_CAPTURE(BM_MillionFacePass, capsule_T9e - 6, 9e-6)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(9);
 
 }  // namespace
 }  // namespace dynamesh

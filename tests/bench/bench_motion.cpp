@@ -6,33 +6,49 @@
 // Report CPU time (the machine is shared): `dynamesh_bench --benchmark_filter=Smooth`.
 #include <benchmark/benchmark.h>
 
+#include <memory>
+
 #include "core/adapt/adapter.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
 namespace {
 
-void BM_SmoothAnimation(benchmark::State& state) {
-  const bool safeguards = state.range(0) != 0;
+// Both benchmarks: twist at T = 0.008, eps = T / 4.
+AdaptOptions twist_options() {
   AdaptOptions o;
   o.threshold = 0.008;
   o.epsilon = o.threshold / 4;
+  return o;
+}
+
+// A twist surface and its adapter (not initialised); the surface must outlive the adapter.
+struct TwistRun {
+  explicit TwistRun(const AdaptOptions& o)
+      : surface(make_scene("twist")),
+        adapter(*surface, o, default_criteria("twist", 0.0, o, 0.0)) {}
+  std::unique_ptr<Surface> surface;
+  Adapter adapter;
+};
+
+void BM_SmoothAnimation(benchmark::State& state) {
+  const bool safeguards = state.range(0) != 0;
+  AdaptOptions o = twist_options();
   o.substeps.enabled = safeguards;
   o.fold_repair.enabled = safeguards;
   double extra_substeps = 0, repair_moves = 0, steps = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    auto surface = make_scene("twist");
-    Adapter adapter(*surface, o, default_criteria("twist", 0.0, o, 0.0));
-    adapter.initialize();
+    TwistRun run(o);
+    run.adapter.initialize();
     state.ResumeTiming();
     for (int i = 1; i <= 100; ++i) {
-      const StepStats& s = adapter.step(i / 100.0);
+      const StepStats& s = run.adapter.step(i / 100.0);
       extra_substeps += s.substeps - 1;
       repair_moves += static_cast<double>(s.repair_moves);
       ++steps;
     }
-    benchmark::DoNotOptimize(adapter.mesh().n_faces());
+    benchmark::DoNotOptimize(run.adapter.mesh().n_faces());
   }
   state.counters["extra_substeps_per_step"] = extra_substeps / steps;
   state.counters["repair_moves_per_step"] = repair_moves / steps;
@@ -45,18 +61,15 @@ BENCHMARK(BM_SmoothAnimation)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Mi
 // once, at initialisation, not per step. Twist at T = 0.008 initialised at t = 0, with the
 // argument's number of rounds (0: none; 20: the default). Counter: the first mesh's triangles.
 void BM_InitialRelaxation(benchmark::State& state) {
-  AdaptOptions o;
-  o.threshold = 0.008;
-  o.epsilon = o.threshold / 4;
+  AdaptOptions o = twist_options();
   o.initial_relaxation_rounds = static_cast<int>(state.range(0));
   double triangles = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    auto surface = make_scene("twist");
-    Adapter adapter(*surface, o, default_criteria("twist", 0.0, o, 0.0));
+    TwistRun run(o);
     state.ResumeTiming();
-    adapter.initialize();
-    triangles = static_cast<double>(adapter.mesh().n_faces());
+    run.adapter.initialize();
+    triangles = static_cast<double>(run.adapter.mesh().n_faces());
   }
   state.counters["triangles"] = triangles;
 }

@@ -216,6 +216,35 @@ TEST(FoldScreenAround, SameVerdictsAsTheFullScreen) {
 
 // Through the adapter: publishing after a screen of the changed rings only gives every step
 // the same mesh and figures as screening every face.
+// The fold screen's scratch kept between calls (FoldScreenBuffers, as the adapter keeps it)
+// gives a fresh screen's verdicts whatever it held: here first a larger mesh, then the
+// damaged mesh mirrored in x and scaled 1000x (its vertex sums, 10^6 times larger and turned
+// against the damaged mesh's own normals, would hide folds and flag sound faces if they
+// leaked into the next call's sums).
+TEST(FoldScreenBuffersKept, SameVerdictsAsFreshScratch) {
+  MovedEllipsoid s;
+  const Mesh48 large = refined_mesh(s, 7);
+  const Mesh48 damaged = damaged_mesh(s);
+  Mesh48 mirrored = damaged;
+  for (Vec3& p : mirrored.positions()) p = 1000.0 * Vec3(-p.x(), p.y(), p.z());
+  ASSERT_GT(large.face_capacity(), damaged.face_capacity());
+  std::vector<Face> folded, slivers, folded_kept, slivers_kept;
+  FoldScreenBuffers kept;
+  find_bad_faces(large, s, 10.0, folded_kept, slivers_kept, &kept);
+  find_bad_faces(mirrored, s, 10.0, folded_kept, slivers_kept, &kept);
+  find_bad_faces(damaged, s, 10.0, folded_kept, slivers_kept, &kept);
+  find_bad_faces(damaged, s, 10.0, folded, slivers);
+  ASSERT_GT(folded.size(), 10u);
+  ASSERT_GT(slivers.size(), 10u);
+  EXPECT_EQ(folded_kept, folded);
+  EXPECT_EQ(slivers_kept, slivers);
+  // And back to the larger mesh after the smaller ones.
+  find_bad_faces(large, s, 10.0, folded_kept, slivers_kept, &kept);
+  find_bad_faces(large, s, 10.0, folded, slivers);
+  EXPECT_EQ(folded_kept, folded);
+  EXPECT_EQ(slivers_kept, slivers);
+}
+
 TEST(FoldScreenAround, AdapterStepsMatchTheFullScreen) {
   for (const char* scene : {"capsule-bend", "twist"}) {
     AdaptOptions o;
