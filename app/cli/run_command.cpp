@@ -180,6 +180,9 @@ void log_topology(std::ostream& log, const StepStats& s) {
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
         << " faces near the event replaced, the patch contoured at spacing " << std::setprecision(3)
         << s.repair_spacing << "; the other vertices kept)\n";
+  if (s.folds_remeshed > 0 && !s.rebuilt)
+    log << "topology: " << s.folds_remeshed << " faces left folded by the correction at step "
+        << s.step << " re-meshed locally from F's contour (the other vertices kept)\n";
   if (s.rebuilt)
     log << "topology: mesh rebuilt from F's contour at step " << s.step << " (t=" << std::fixed
         << std::setprecision(4) << s.time << "; no vertex survives a rebuild"

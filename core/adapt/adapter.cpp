@@ -215,6 +215,7 @@ const StepStats& Adapter::step(double t) {
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
   probe_.set_split_fold_guard(false);    // until a topology repair (check_topology)
+  repair_centres_.clear();
   vertices_at_start_ = mesh_.n_vertices();
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
   // one the paper's whole step, so that no sub-step moves the surface far against the mesh.
@@ -258,6 +259,7 @@ const StepStats& Adapter::step(double t) {
   }
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
+  if (topology_) rebuild_if_crossed();
   finish_stats();
   return stats_;
 }

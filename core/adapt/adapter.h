@@ -30,6 +30,8 @@
 
 namespace dynamesh {
 
+struct MeshTopologySummary;  // core/topology/topology_events.h
+
 class TopologyMonitor;
 struct TopologyCheck;
 
@@ -137,6 +139,12 @@ class Adapter {
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
   // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
   void rebuild_if_folded();
+  // The faces left folded re-meshed by F's contour around them, when they lie together; true
+  // when the mesh then has `topology` and no folded face (else the caller re-bases; the mesh
+  // may have been changed).
+  bool remesh_folds_locally(const MeshTopologySummary& topology);
+  // At the end of a step with local repairs: re-bases when the faces near them cross the mesh.
+  void rebuild_if_crossed();
   // A global re-base to a mesh of Euler characteristic `euler` and `components` components
   // (0: not known, Morse theory gives only the characteristic). Throws std::invalid_argument
   // when no base mesh with that topology can be placed on the surface now (the run stops
@@ -172,6 +180,7 @@ class Adapter {
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
+  std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
   std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
   FoldScreenBuffers fold_screen_;  // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;

@@ -6,7 +6,9 @@
 #include <string>
 
 #include "core/adapt/adapter.h"
+#include "core/geometry/fold_repair.h"
 #include "core/topology/contour_base_mesh.h"
+#include "core/topology/face_crossings.h"
 #include "core/topology/local_repair.h"
 #include "core/topology/marching_tetrahedra.h"
 #include "core/topology/topology_events.h"
@@ -75,6 +77,7 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
       continue;
     }
     ++repaired;
+    repair_centres_.push_back(e.position);
     stats_.repair_faces_replaced += r.removed_faces;
     stats_.repair_spacing = std::max(stats_.repair_spacing, r.spacing);
     adopt_repair(r.new_vertices);
@@ -171,16 +174,104 @@ Mesh48 Adapter::mid_run_base_mesh(long euler, long components) {
       "), so the mesh cannot be rebuilt there");
 }
 
+bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
+  // Faces left folded next to an event: a neck thinning towards a split narrower than its
+  // edges, or tips receding from one just repaired (the wide blobs in 20 steps: 1 to 4 faces
+  // within 0.05 of the saddle, twice before the split and once after it). The local repair's
+  // cut, contour and stitch (local_repair.h) serve as well where the topology stays: the
+  // faces around the folds are replaced by F's contour there, whose new triangles all face
+  // up grad F, and the other vertices keep their identity; a global re-base otherwise.
+  if (!options_.local_topology_repair) return false;
+  const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
+  std::vector<Face> folded, slivers;
+  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+  if (folded.empty()) return false;
+  Vec3 centre = Vec3::Zero();
+  std::size_t corners = 0;
+  for (const Face f : folded)
+    for (const Vertex v : mesh_.vertices(f)) centre += mesh_.position(v), ++corners;
+  centre /= static_cast<double>(corners);
+  LocalRepairOptions o;  // as repair_topology_locally's
+  o.radius = 2.0 * topology_->spacing();
+  o.spacing = 0.5 * topology_->spacing();
+  o.max_spacing = 0.75 * topology_->spacing();
+  for (const Face f : folded)  // one patch: the folds together, within half the cut
+    for (const Vertex v : mesh_.vertices(f))
+      if ((mesh_.position(v) - centre).norm() > 0.5 * o.radius) return false;
+  const LocalRepairResult r = repair_locally(mesh_, implicit, centre, o);
+  if (!r.repaired) {
+    stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
+    return false;
+  }
+  adopt_repair(r.new_vertices);
+  if (!(summarize_topology(mesh_) == topology)) return false;  // the re-base follows
+  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+  if (!folded.empty()) return false;
+  // Nor may the new faces pass through the mesh's other sheet across the neck (the wide blobs
+  // in 20 steps: 111 crossing pairs in the frame before the split, every face facing up).
+  std::vector<Face> around;
+  for (const Vertex v : r.new_vertices)
+    mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
+  if (count_face_crossings(mesh_, around) > 0) {
+    stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
+    return false;
+  }
+  repair_centres_.push_back(centre);
+  stats_.folds_remeshed += stats_.folds_left;
+  stats_.repair_faces_replaced += r.removed_faces;
+  stats_.repair_spacing = std::max(stats_.repair_spacing, r.spacing);
+  return true;
+}
+
 void Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
   if (folded == 0) return;
   const auto start = std::chrono::steady_clock::now();
   const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
+  if (remesh_folds_locally(now)) {
+    stats_.folds_left = 0;
+    stats_.topology_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
   rebuild_from_base(now.euler, now.components);
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;
   stats_.folds_left = 0;
+  stats_.topology_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace dynamesh
+
+namespace dynamesh {
+
+void Adapter::rebuild_if_crossed() {
+  // A locally repaired region is judged once more when the step ends: the sub-steps after the
+  // repair move its vertices with the surface, and across a neck that keeps thinning (the wide
+  // blobs in 20 steps, the frame before the split) they can pass through the other sheet while
+  // every face still faces up grad F (111 crossing pairs). The faces near each repair are
+  // tested against the whole mesh; a mesh that crosses itself is re-based.
+  if (repair_centres_.empty() || stats_.rebuilt) return;
+  const auto start = std::chrono::steady_clock::now();
+  const double reach = 4.0 * topology_->spacing();
+  std::vector<Face> near;
+  for (const Face f : mesh_.live_faces()) {
+    bool close = false;
+    for (const Vertex v : mesh_.vertices(f))
+      for (const Vec3& c : repair_centres_)
+        close = close || (mesh_.position(v) - c).norm() <= reach;
+    if (close) near.push_back(f);
+  }
+  if (count_face_crossings(mesh_, near) > 0) {
+    stats_.repair_refusals.push_back(
+        "the locally repaired region crossed the mesh by the end of the step");
+    const MeshTopologySummary now = summarize_topology(mesh_);
+    rebuild_from_base(now.euler, now.components);
+    topology_->mesh_rebuilt(mesh_);
+    stats_.rebuilt = true;
+  }
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

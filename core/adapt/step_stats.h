@@ -66,6 +66,7 @@ struct StepStats {
   std::vector<std::string> repair_refusals;  // why a local repair was not done
   bool rebuilt = false;
   std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
+  std::size_t folds_remeshed = 0;  // ... which were re-meshed locally instead (no rebuild)
   double topology_seconds = 0.0;
   PhaseSeconds seconds;
 };

@@ -160,6 +160,53 @@ bool unpinch(const Mesh48& mesh, std::vector<char>& cut) {
   return true;
 }
 
+// Remaining faces that the cut encloses: a piece of the remaining mesh (faces joined across
+// edges) that lies wholly within the cut's reach from the event and has at most a sixteenth of
+// the cut's faces. Levelling grows the cut around coarse faces, which it keeps, and leaves such
+// islands (a single diamond, whose border is a loop of 4 edges, inside a cut of 738 faces
+// around the wide blobs' thinning neck): the patch has no loop for them, and the repair was
+// refused. They are cut too. (A larger piece within reach is what is left of a small blob at
+// a merge, 2 folds when it was cut as well: the blobs along x in 20 steps.) Returns whether
+// any was found.
+bool cut_islands(const Mesh48& mesh, std::vector<char>& cut, const Vec3& centre) {
+  double reach = 0;
+  std::size_t cut_faces = 0;
+  for (const Face f : mesh.live_faces()) {
+    if (!cut[f.idx]) continue;
+    ++cut_faces;
+    for (const Vertex v : mesh.vertices(f))
+      reach = std::max(reach, (mesh.position(v) - centre).norm());
+  }
+  std::vector<char> seen(cut.size(), 0);
+  std::vector<Face> piece, stack;
+  bool found = false;
+  for (const Face start : mesh.live_faces()) {
+    if (cut[start.idx] || seen[start.idx]) continue;
+    piece.clear();
+    stack.assign(1, start);
+    seen[start.idx] = 1;
+    bool within = true;
+    while (!stack.empty()) {
+      const Face f = stack.back();
+      stack.pop_back();
+      piece.push_back(f);
+      for (const Vertex v : mesh.vertices(f))
+        within = within && (mesh.position(v) - centre).norm() <= reach;
+      for (int i = 0; i < 3; ++i) {
+        const Face n = mesh.neighbor(f, i);
+        if (n.is_valid() && !cut[n.idx] && !seen[n.idx]) {
+          seen[n.idx] = 1;
+          stack.push_back(n);
+        }
+      }
+    }
+    if (!within || 16 * piece.size() > cut_faces) continue;
+    for (const Face f : piece) cut[f.idx] = 1;
+    found = true;
+  }
+  return found;
+}
+
 // Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
                                                                const std::vector<char>& cut) {
@@ -474,7 +521,7 @@ double patch_spacing(const Mesh48& mesh, const std::vector<Loop>& loops,
 
 // One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam).
 LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
-                          double r, double h, double max_h) {
+                          double r, double h, double max_h, bool islands) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -490,6 +537,10 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
       if ((mesh.position(v) - centre).norm() <= r) cut[f.idx] = 1;
   close_cut(mesh, cut);
   level_border(mesh, cut);
+  for (int round = 0; round < 4 && islands && cut_islands(mesh, cut, centre); ++round) {
+    close_cut(mesh, cut);
+    level_border(mesh, cut);
+  }
   std::vector<Loop> mesh_loops = loops_of(border_of(mesh, cut));
   for (int round = 0; round < 8 && mesh_loops.empty() && unpinch(mesh, cut); ++round)
     mesh_loops = loops_of(border_of(mesh, cut));
@@ -738,19 +789,34 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // finest spacing. With the mended pairing and the stitching by dynamic programming the
   // first attempt is taken on the examples (blobs, torus pinch); the ladder remains for a
   // contour whose loops do not match the cut's, and a finer patch still re-adapts better than
-  // a global re-base.
+  // a global re-base. Down to a quarter of the finest spacing: just after a split the new tips
+  // are sharper than the patch's grid (their radius of curvature grows as sqrt(t - t_event)),
+  // and a grid point on the event (outside) leaves contour triangles across the tips that face
+  // sideways (the wide blobs' split, s^2 = 0.35: turned over at every spacing down to 0.75 h).
+  // Last, the same with the islands the levelled cut encloses cut as well (cut_islands): they
+  // leave the cut more border loops than the contour, but cutting them where another cut
+  // would do changes which attempt is taken (the blobs along x in 20 steps then folded after
+  // the merge), so only where no cut without them would do.
   std::vector<double> coarsest;
   for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
     coarsest.push_back(most);
   coarsest.push_back(h);
-  for (const double grow : {1.0, 1.25, 1.5})
-    for (const double finer : {1.0, 0.75})
-      for (const double most : coarsest) {
-        if (finer < 1.0 && most > h) continue;  // the finer grid only at the finest spacing
-        last = attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most);
-        if (last.repaired) return last;
-        why += (why.empty() ? "" : "; ") + last.why_not;
-      }
+  struct Ladder {
+    std::vector<double> finer;
+    bool islands;
+  };
+  const Ladder ladders[3] = {
+      {{1.0, 0.75}, false}, {{0.5, 0.35, 0.25}, false}, {{1.0, 0.75, 0.5, 0.35, 0.25}, true}};
+  for (const Ladder& ladder : ladders)
+    for (const double grow : {1.0, 1.25, 1.5})
+      for (const double finer : ladder.finer)
+        for (const double most : coarsest) {
+          if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
+          last = attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most,
+                         ladder.islands);
+          if (last.repaired) return last;
+          why += (why.empty() ? "" : "; ") + last.why_not;
+        }
   last.why_not = why;
   return last;
 }

@@ -236,6 +236,19 @@ TEST(TopologyVariantsCli, WideBlobsSplitAfterARebaseFinish) {
       blobs("wide-110", Vec3(1, 1, 0), Vec3::Zero(), 0.35, 0.3, 0.8, "-2,-2,-1.5,2,2,1.5", 40));
 }
 
+// The same in 20 steps (session 7's sweep): the neck thinning towards the split folded at
+// t = 0.85 and the fold net re-based; the split's local repair was then refused (the cut,
+// levelled around coarse faces, enclosed a diamond: 4 border loops against the contour's 2),
+// and the mesh was re-based again: survival 0.896. Now the folds are re-meshed locally, the
+// frame at t = 0.85 is checked for faces crossing the mesh (a re-mesh across the thinning
+// neck left 111 crossing pairs), re-based once, and the split repaired locally.
+TEST(TopologyVariantsCli, WideBlobsIn20StepsSplitLocally) {
+  Variant v =
+      blobs("wide-110-20", Vec3(1, 1, 0), Vec3::Zero(), 0.35, 0.3, 0.8, "-2,-2,-1.5,2,2,1.5", 20);
+  v.max_rebuilds = 1;
+  run_and_judge(v);
+}
+
 // The blobs as a formula in 20 steps: the merge's local repair was followed by folds
 // (17 faces: the split pass across the new neck, thinner than the edges, and equal sub-steps
 // giving the first one most of its widening), and the fold net rebuilt the whole mesh.
