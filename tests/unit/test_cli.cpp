@@ -197,9 +197,9 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
   const fs::path dir = scratch();
   auto measured_share = [&](const std::string& mode) {
     const fs::path csv = dir / (mode + ".csv");
-    const Result r = run_cli("run --scene twist --threshold 0.004 --t0 0.3 --t1 0.34 --steps 8 " +
-                             (mode.empty() ? "" : "--sampling " + mode) + " --quiet --stats " +
-                             csv.string());
+    const Result r =
+        run_cli("run --scene twist --threshold 0.004 --t0 0.3 --t1 0.34 --steps 8 " +
+                (mode.empty() ? "" : "--sampling " + mode) + " --quiet --stats " + csv.string());
     EXPECT_EQ(r.status, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
     EXPECT_LE(json["max_sample_error"].get<double>(), 0.005 + 1e-12) << mode;  // T + eps
@@ -230,19 +230,22 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
 }
 
 // --renumber: on renumbers the mesh along a Morton curve whenever its numbering has
-// scattered (the CSV's `renumbered`), off never. Survival is counted through a renumbering:
-// with one sub-step, no rebuild, the vertices kept are exactly those alive before the step
-// less those welded in it (the weld pass runs before the split pass, so no vertex born in
-// the step is welded in it), a count from the mesh's sizes that never looks at ids.
+// scattered (the CSV's `renumbered`), off never. The renumbering happens at the end of a
+// step, after everything but the step's statistics: up to the first renumbered step both runs
+// are the same computation, so that step's survival statistics (vertices kept, their
+// displacement since the step's start), which the on run counts through the renumbering,
+// must be the off run's exactly (the mean up to the order of its sum). Afterwards the runs
+// differ by rounding only (sums over a vertex's faces in another order). And whatever the
+// numbering, a step that welded nothing keeps every vertex it started with.
 TEST(Cli, RenumberOptionKeepsSurvivalCounted) {
   const fs::path dir = scratch();
   using Rows = std::vector<std::vector<std::string>>;
   std::vector<std::string> names;
   auto run = [&](const std::string& mode) {
     const fs::path csv = dir / ("renumber_" + mode + ".csv");
-    const Result r = run_cli(
-        "run --scene capsule-bend --threshold 0.0005 --t0 0.3 --t1 0.5 --steps 10 --renumber " +
-        mode + " --quiet --stats " + csv.string());
+    // The growing sphere: thousands of splits per step scatter the numbering quickly.
+    const Result r = run_cli("run --scene sphere --threshold 0.002 --steps 10 --renumber " + mode +
+                             " --quiet --stats " + csv.string());
     EXPECT_EQ(r.status, 0) << r.err;
     std::ifstream in(csv);
     std::string line;
@@ -263,31 +266,35 @@ TEST(Cli, RenumberOptionKeepsSurvivalCounted) {
   const auto number = [&](const Rows& rows, std::size_t k, const char* name) {
     return std::stod(rows[k].at(column(name)));
   };
-  int renumbered_later = 0, checked = 0;
+  std::size_t first = 0;  // the first renumbered step
+  int renumbered = 0;
   for (std::size_t k = 0; k < on.size(); ++k) {
     EXPECT_EQ(number(off, k, "renumbered"), 0) << k;
-    if (k == 0) continue;
-    renumbered_later += number(on, k, "renumbered") == 1;
-    for (const Rows* rows : {&on, &off}) {
-      if (number(*rows, k, "substeps") != 1 || number(*rows, k, "rebuilt") != 0) continue;
-      const double before = number(*rows, k - 1, "vertices");
-      const double kept = number(*rows, k, "vertices_kept");
-      EXPECT_EQ(kept, before - number(*rows, k, "welds")) << "step " << k;
-      EXPECT_NEAR(number(*rows, k, "kept_fraction"), kept / before, 1e-9) << "step " << k;
-      ++checked;
+    renumbered += number(on, k, "renumbered") == 1;
+    if (first == 0 && number(on, k, "renumbered") == 1) first = k;
+    if (k > 0 && number(on, k, "welds") == 0) {
+      EXPECT_EQ(number(on, k, "vertices_kept"), number(on, k - 1, "vertices")) << k;
     }
-    // The survivors' displacement, against where each was at the step's start: the same
-    // motion with or without renumbering.
-    const double moved_on = number(on, k, "survivor_displacement_max");
-    const double moved_off = number(off, k, "survivor_displacement_max");
-    EXPECT_GT(moved_on, 0.5 * moved_off) << "step " << k;
-    EXPECT_LT(moved_on, 2.0 * moved_off) << "step " << k;
+  }
+  ASSERT_GE(first, 1u);
+  EXPECT_GE(renumbered, 2);
+  for (std::size_t k = 1; k <= first; ++k) {
+    for (const char* exact : {"triangles", "vertices", "splits", "welds", "vertices_kept",
+                              "kept_fraction", "survivor_displacement_max", "max_error"})
+      EXPECT_EQ(on[k].at(column(exact)), off[k].at(column(exact))) << exact << ", step " << k;
+    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
+                number(off, k, "survivor_displacement_mean"),
+                1e-9 * number(off, k, "survivor_displacement_mean"))
+        << k;
+  }
+  for (std::size_t k = first + 1; k < on.size(); ++k) {
     EXPECT_NEAR(number(on, k, "triangles"), number(off, k, "triangles"),
                 0.02 * number(off, k, "triangles"));
+    EXPECT_NEAR(number(on, k, "kept_fraction"), number(off, k, "kept_fraction"), 0.02);
+    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
+                number(off, k, "survivor_displacement_mean"),
+                0.02 * number(off, k, "survivor_displacement_mean"));
   }
-  EXPECT_EQ(number(on, 0, "renumbered"), 1);  // after the initial adaptation
-  EXPECT_GE(renumbered_later, 1);
-  EXPECT_GE(checked, 10);
   fs::remove_all(dir);
 }
 
