@@ -144,10 +144,12 @@ class Adapter {
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
   // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
   void rebuild_if_folded();
-  // A global re-base; false (the mesh kept, the reason in repair_refusals) when no base mesh
-  // can be placed on the surface now.
-  bool rebuild_from_base();
-  std::optional<Mesh48> mid_run_base_mesh();
+  // A global re-base to a mesh of Euler characteristic `euler` and `components` components
+  // (0: not known, Morse theory gives only the characteristic). Throws std::invalid_argument
+  // when no base mesh with that topology can be placed on the surface now (the run stops
+  // with that reason rather than refine a wrong mesh without end).
+  void rebuild_from_base(long euler, long components);
+  Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
 

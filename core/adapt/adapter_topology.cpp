@@ -8,6 +8,7 @@
 #include "core/adapt/adapter.h"
 #include "core/topology/contour_base_mesh.h"
 #include "core/topology/local_repair.h"
+#include "core/topology/marching_tetrahedra.h"
 #include "core/topology/topology_events.h"
 
 namespace dynamesh {
@@ -30,7 +31,19 @@ void Adapter::check_topology() {
   // Locally first; when that cannot be done the whole mesh is rebuilt from F's contour at this
   // time (a global re-base), which the split pass then refines like a first mesh.
   const auto start = std::chrono::steady_clock::now();
-  if (!repair_topology_locally(check) && rebuild_from_base()) stats_.rebuilt = true;
+  // Until the step ends, splits next to the new neck or tips are kept from folding
+  // (SurfaceProbe::project_split_vertex): the mesh there is coarse against a feature that
+  // grows from zero.
+  probe_.set_split_fold_guard(true);
+  if (!repair_topology_locally(check)) {
+    // What the mesh must become (topology_events.h): the trusted contour's topology, else the
+    // Euler characteristic Morse theory gives.
+    if (check.contour_trusted)
+      rebuild_from_base(check.contour.euler, check.contour.components);
+    else
+      rebuild_from_base(check.expected_euler, 0);
+    stats_.rebuilt = true;
+  }
   topology_->mesh_rebuilt(mesh_);
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -99,7 +112,7 @@ bool faces_outwards(const Mesh48& mesh, const ImplicitSurface& surface) {
 
 }  // namespace
 
-std::optional<Mesh48> Adapter::mid_run_base_mesh() {
+Mesh48 Adapter::mid_run_base_mesh(long euler, long components) {
   // The surface's own base mesh first (a contour of F on its grid). Right at an event F has a
   // double cone (grad F = 0 on the surface) and the contour's triangles at the cone's tip can
   // face against grad F: the surface refuses such a base (check_orientation). That is often a
@@ -107,31 +120,63 @@ std::optional<Mesh48> Adapter::mid_run_base_mesh() {
   // different grids (other cell counts along the longest side, so that no grid point keeps its
   // place near the tip) are tried. When every grid folds, the surface is one no mesh can
   // follow (ripples finer than the grid: CliHostile), and the surface's refusal stands.
+  // A base is taken only with the topology asked for. Just after an event the grid's
+  // piecewise-linear contour may still join two tips closer than a cell (or miss a new neck
+  // thinner than one); refining such a base cannot make it right: the split queue bridged the
+  // gap between the tips with ever more triangles, up to the triangle budget (the wide blobs'
+  // split, issue 16). Then F = level is contoured, the level moved off zero just far enough
+  // that the grid resolves every critical point on its own side (TopologyMonitor::clear_level),
+  // and the vertices are projected onto F = 0.
+  const auto wanted = [&](const Mesh48& mesh) {
+    const MeshTopologySummary s = summarize_topology(mesh);
+    return s.euler == euler && (components == 0 || s.components == components);
+  };
   std::exception_ptr refusal;
   try {
-    return surface_.base_mesh();
+    Mesh48 mesh = surface_.base_mesh();
+    if (wanted(mesh)) return mesh;
   } catch (const std::invalid_argument&) {
     refusal = std::current_exception();
   }
-  if (const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_)) {
+  const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_);
+  bool outwards = false;
+  for (const double fraction : {0.0, 0.25, 0.5, 1.0}) {
+    if (!implicit || (fraction > 0 && !topology_)) break;
     for (const int cells : {25, 23, 27, 21, 29, 20}) {
       ContourBaseOptions o;
       o.cells_along_longest = cells;
+      if (fraction > 0) {
+        const Box3 box = implicit->bounds();
+        const double diagonal =
+            make_contour_grid(box, box.size().maxCoeff() / cells).spacing().norm();
+        const std::optional<double> level = topology_->clear_level(diagonal, fraction);
+        if (!level || *level == 0.0) continue;  // none, or the plain contour tried already
+        o.level = *level;
+      }
       try {
         Mesh48 mesh = make_contour_base_mesh(*implicit, o);
-        if (faces_outwards(mesh, *implicit)) return mesh;
+        if (!faces_outwards(mesh, *implicit)) continue;
+        outwards = true;
+        if (wanted(mesh)) return mesh;
       } catch (const std::invalid_argument&) {
       }
     }
   }
-  std::rethrow_exception(refusal);
+  if (refusal && !outwards) std::rethrow_exception(refusal);
+  throw std::invalid_argument(
+      surface_.name() + ": at t=" + std::to_string(surface_.time()) +
+      " no contour of F on any grid has the topology the mesh must take (Euler characteristic " +
+      std::to_string(euler) +
+      (components > 0 ? ", " + std::to_string(components) + " component(s)" : std::string()) +
+      "), so the mesh cannot be rebuilt there");
 }
 
 void Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
   if (folded == 0) return;
   const auto start = std::chrono::steady_clock::now();
-  if (!rebuild_from_base()) return;
+  const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
+  rebuild_from_base(now.euler, now.components);
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;

@@ -64,4 +64,19 @@ class QuadraticErrorModel {
   bool vector_ = false;  // some residual had a non-zero second or third component
 };
 
+// EdgePeak: where along one edge of a triangle its residual peaks, from the residual at the
+// edge's quarter points. On a saddle-shaped patch (the twisted bar's sides, paper Section 5)
+// |r| is largest on the triangle's edges, and a residual whose curvature varies across a
+// long edge (a rounded rim) is not quadratic there: its peak moves off the midpoint and rises
+// above the quadratic model's A / 4 (by up to 33% on twist at T = 0.004, where the nine
+// stratified samples of a face lie inside it and only extrapolate to the edge). Along the
+// edge r(t) = t (1 - t) q(t) vanishes at both ends; q is interpolated by the quadratic through
+// r(1/4), r(1/2), r(3/4), which makes r exact to fourth order, and the quartic's maximum over
+// a lattice of the edge is its peak: the place to measure again.
+struct EdgePeak {
+  double t = 0.5;      // where the interpolant peaks, in (0, 1)
+  double value = 0.0;  // its magnitude there
+};
+EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quarters);
+
 }  // namespace dynamesh

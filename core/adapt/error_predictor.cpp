@@ -9,12 +9,39 @@
 namespace dynamesh {
 namespace {
 
-// The quadratic part's change (the c_ij) is what the vertices' first-order data give; the
-// sampled error moves with the rest too (cubic terms, which vary with the face's place on a
-// surface of changing curvature, and the least-squares fit's response to them). Measured on
-// twist, 100 steps over [0, 1] at T = 0.002: a skipped face's fresh estimate moved up to
-// 1.6x of the bound with a factor 4, 0.8x with 8 (test_predictive_sampling.cpp).
-constexpr double kSafety = 8.0;
+// The vertices' first-order data give the change of the residual's quadratic and cubic
+// parts along the edges (c, d); the sampled reading moves with the rest too: the cubic term
+// inside the face that no edge sees, higher terms, and the least-squares fit's response to
+// them (error_model.h). Measured, bound usage (a skipped face's fresh reading's change over
+// its bound, max over 100 steps over [0, 1] at T = 0.002, test_predictive_sampling.cpp):
+// without d, twist 1.4 with a factor 8 (the cubic change on its rims; before the edge peak
+// search the trajectory happened to avoid it: 0.69); with d, 0.14-0.17 with 8, 0.24-0.42 with
+// 4 and 0.19-0.31 with 5 (twist, capsule-bend, sinc, sphere). 5 keeps a margin of 3.
+constexpr double kSafety = 5.0;
+
+// Over the triangle, max of b_i b_j |b_j - b_i| on one edge's term (at 2 t - 1 = 1 / sqrt 3),
+// and of their sum over the three edges (numerically, on a 600-point lattice: 0.11756).
+constexpr double kCubicEdge = 0.0962250448649376;  // 1 / (6 sqrt 3)
+constexpr double kCubicSum = 0.1176;
+
+// The largest and the summed change of the three edges' coefficient vectors.
+struct Change {
+  double largest = 0.0, sum = 0.0;
+};
+Change change(const float (&now)[3][3], const float (&then)[3][3]) {
+  Change out;
+  for (int e = 0; e < 3; ++e) {
+    double d2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = static_cast<double>(now[e][c]) - then[e][c];
+      d2 += d * d;
+    }
+    const double d = std::sqrt(d2);
+    out.largest = std::max(out.largest, d);
+    out.sum += d;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -90,15 +117,25 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
   for (int e = 0; e < 3; ++e) {
     const Vertex i = v[(e + 1) % 3], j = v[(e + 2) % 3];
     const VertexFrame &fi = frame_[i.idx], &fj = frame_[j.idx];
-    Vec3 c;
+    const Vec3 edge = mesh.position(j) - mesh.position(i);
+    // The residual's slopes along the edge at its ends, r'(0) and r'(1) (implicit: the distance
+    // gradient n along the edge; parametric: the edge minus the surface's own step J duv).
+    Vec3 start, end;
     if (probe.parametric()) {
       const auto& s = static_cast<const ParametricSurface&>(probe.surface());
       const Vec2 d = s.unwrap_near(mesh.uv(j), mesh.uv(i)) - mesh.uv(i);
-      c = 0.5 * ((fj.a - fi.a) * d[0] + (fj.b - fi.b) * d[1]);
+      start = edge - (fi.a * d[0] + fi.b * d[1]);
+      end = edge - (fj.a * d[0] + fj.b * d[1]);
     } else {
-      c = Vec3(-0.5 * (mesh.position(j) - mesh.position(i)).dot(fj.a - fi.a), 0.0, 0.0);
+      start = Vec3(edge.dot(fi.a), 0.0, 0.0);
+      end = Vec3(edge.dot(fj.a), 0.0, 0.0);
     }
-    for (int k = 0; k < 3; ++k) out.c[e][k] = static_cast<float>(c[k]);
+    // r(t) = t (1 - t) (c + d (2 t - 1)) has exactly these slopes.
+    const Vec3 c = 0.5 * (start - end), d = -0.5 * (start + end);
+    for (int k = 0; k < 3; ++k) {
+      out.c[e][k] = static_cast<float>(c[k]);
+      out.d[e][k] = static_cast<float>(d[k]);
+    }
   }
   return out;
 }
@@ -132,20 +169,16 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
     if (!needed) {
       // The face's frames are this step's (begin_step), its reference its last measurement's.
       const Coefficients now = coefficients(mesh, probe, f);
-      double largest = 0.0, sum = 0.0;
-      for (int e = 0; e < 3; ++e) {
-        double d2 = 0.0;
-        for (int c = 0; c < 3; ++c) {
-          const double d = now.c[e][c] - reference_[k].c[e][c];
-          d2 += d * d;
-        }
-        const double d = std::sqrt(d2);
-        largest = std::max(largest, d);
-        sum += d;
-      }
+      const Change quadratic = change(now.c, reference_[k].c);
+      const Change cubic = change(now.d, reference_[k].d);
       double offset = 0.0;
       for (Vertex v : mesh.vertices(f)) offset = std::max(offset, frame_[v.idx].offset);
-      bound_[k] = kSafety * (std::min(largest / 3.0, sum / 4.0) + offset);
+      const double residual =
+          kSafety * (std::min(quadratic.largest / 3.0, quadratic.sum / 4.0) +
+                     std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) + offset);
+      // The reading follows the residual at the samples and, near the split bound, on the
+      // edges (SampleStore::set_peak_search).
+      bound_[k] = residual * samples.reading_gain(f, residual);
       needed = would_split(f, samples.face_error(f) + bound_[k]);
     }
     flags_[k] = needed;

@@ -8,25 +8,36 @@
 // range in which no decision depends on it.
 //
 // The bound. Over a triangle with vertices p_i on the surface, the residual (implicit: the
-// signed distance of the flat triangle's point; parametric: x(b) - S(uv(b))) is to second
-// order r(b) = sum_{i<j} c_ij b_i b_j (error_model.h), with one coefficient per edge:
-//   implicit   c_ij = -1/2 (p_j - p_i) . (n_j - n_i)        (n: unit normals at the vertices)
-//   parametric c_ij = +1/2 (J_j - J_i) (uv_j - uv_i)         (J = [S_u S_v] at the vertices)
-// i.e. half the surface's second derivative along the edge, averaged over the edge, which the
-// vertices' first-order data give exactly for a quadratic surface. Between the face's last
-// measurement and now, the error can therefore have changed by at most
-//   max_b |sum dc_ij b_i b_j| <= min(max |dc_ij| / 3, sum |dc_ij| / 4),
-// dc_ij the change of c_ij. This covers every cause the step knows of — the vertices' normal
+// signed distance of the flat triangle's point; parametric: x(b) - S(uv(b))) vanishes at the
+// corners; along the edge from p_i to p_j (t = b_j) its slopes at the ends are what the
+// vertices' first-order data give:
+//   implicit   r'(0) = (p_j - p_i) . n_i,  r'(1) = (p_j - p_i) . n_j   (n: unit normals)
+//   parametric r'(0) = (p_j - p_i) - J_i (uv_j - uv_i),  likewise J_j  (J = [S_u S_v])
+// so that to third order
+//   r(b) = sum_{i<j} b_i b_j (c_ij + d_ij (b_j - b_i)) + e b_0 b_1 b_2,
+//   c_ij = (r'(0) - r'(1)) / 2,  d_ij = -(r'(0) + r'(1)) / 2:
+// c_ij is half the surface's second derivative along the edge, averaged over it (the
+// quadratic model's coefficient, error_model.h), d_ij how that second derivative changes
+// along the edge. Between the face's last measurement and now, the error can therefore have
+// changed by at most
+//   min(max |dc| / 3, sum |dc| / 4) + min(max |dd| 0.1176, sum |dd| / (6 sqrt 3)),
+// dc, dd the changes of the coefficients (the maxima over the triangle of sum b_i b_j and of
+// sum b_i b_j |b_j - b_i|). This covers every cause the step knows of — the vertices' normal
 // correction and tangential moves (through p and uv), the surface's own motion (through the
 // normals and Jacobians at the vertices' new places), and how that motion varies across the
-// face (a rigid motion of a face with its surface leaves every c_ij unchanged, however fast).
+// face (a rigid motion of a face with its surface leaves c and d unchanged, however fast).
+// The cubic term is needed where a face slides across a change of curvature (twist's rounded
+// rims, where smoothing moves vertices around the section): there d flips sign while c barely
+// changes, and the sampled reading of a skipped face moved by 1.4x a bound without d
+// (PredictiveAnimation/twist, T = 0.002).
 //
 // Assumptions, and what guards them:
-//   - The residual is quadratic over the triangle (the error model's own assumption). Faces
-//     where the model did not fit their samples (SampleStore::densified) are always measured,
-//     and the bound is multiplied by a safety factor (kSafety, error_predictor.cpp) for the
-//     cubic and higher terms it leaves out and for how the sampled estimate (a least-squares
-//     fit, error_model.h) responds to them.
+//   - The residual is cubic over the triangle. Faces where the quadratic model did not fit
+//     their samples (SampleStore::densified) are always measured, and the bound is multiplied
+//     by a safety factor (kSafety, error_predictor.cpp) for the term e the vertices do not
+//     see, the higher terms, and how the sampled estimate (a least-squares fit, error_model.h)
+//     responds to them; and by SampleStore::reading_gain where the reading ramps in its edge
+//     peaks (near the split bound).
 //   - The vertices lie on the surface (normal correction). Where a projection left a vertex
 //     off it, that vertex's distance to the surface is added to the bound (the residual is
 //     then no longer zero there; it moves the face's error by at most that much).
@@ -114,7 +125,10 @@ class ErrorPredictor final : public MeshListener {
     double offset = 0.0;
   };
   struct Coefficients {
-    float c[3][3];  // per edge (opposite vertex i), the coefficient vector (implicit: c[i][0])
+    // Per edge (opposite vertex i) the coefficient vectors (implicit: [i][0]) of the residual
+    // along it, r(t) = t (1 - t) (c + d (2 t - 1)): c quadratic, d cubic.
+    float c[3][3];
+    float d[3][3];
   };
 
   void grow(const Mesh48& mesh);

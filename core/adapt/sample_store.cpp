@@ -11,6 +11,11 @@
 namespace dynamesh {
 namespace {
 
+// Below the peak search floor, the edge peaks count less by this much per unit of the model
+// reading's distance to the floor (set_peak_search). Steeper, fewer faces are searched;
+// gentler, the reading moves less with the model (reading_gain).
+constexpr double kPeakRamp = 1.0;
+
 // SplitMix64: a counter-based generator, so a pattern depends only on (seed, pattern number).
 std::uint64_t mix(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ull;
@@ -54,6 +59,8 @@ void SampleStore::grow_faces(std::size_t capacity) {
   face_error_.resize(capacity, 0.0);
   face_dense_.resize(capacity, 0);
   measured_.resize(capacity, 0);
+  model_error_.resize(capacity, 0.0);
+  peak_error_.resize(capacity, -1.0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -138,6 +145,8 @@ void SampleStore::reset(const Mesh48& mesh) {
   face_error_.assign(mesh.face_capacity(), 0.0);
   face_dense_.assign(mesh.face_capacity(), 0);
   measured_.assign(mesh.face_capacity(), 0);
+  model_error_.assign(mesh.face_capacity(), 0.0);
+  peak_error_.assign(mesh.face_capacity(), -1.0);
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
@@ -167,9 +176,57 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     }
   }
   const QuadraticErrorModel::Result r = model.evaluate();
-  face_error_[f.idx] = r.error;
+  model_error_[f.idx] = r.error;
+  const bool search = peak_floor_ > 0.0 && r.error >= search_start_;
+  peak_error_[f.idx] = search ? edge_peaks(probe, p, uv) : -1.0;
+  face_error_[f.idx] = search ? peak_reading(r.error, peak_error_[f.idx]) : r.error;
   measured_[f.idx] = 1;
   return r.resolved;
+}
+
+void SampleStore::set_peak_search(double floor, double largest_under_reading) {
+  peak_floor_ = floor;
+  largest_under_reading_ = largest_under_reading;
+  // There, a peak under-read by largest_under_reading reads no more than the model.
+  search_start_ = floor * kPeakRamp / (largest_under_reading + kPeakRamp);
+}
+
+double SampleStore::peak_reading(double model, double peaks) const {
+  return std::max(model, peaks - kPeakRamp * std::max(0.0, peak_floor_ - model));
+}
+
+double SampleStore::reading_gain(Face f, double bound) const {
+  const double model = model_error_[f.idx], peaks = peak_error_[f.idx];
+  if (peak_floor_ <= 0.0 || model - bound >= peak_floor_) return 1.0;
+  // Below the floor the reading follows the model with slope kPeakRamp where the ramped peaks
+  // read above it. Whether they could, for a model reading within the bound, is linear in it:
+  // the range's ends decide. An unsearched face's peaks are taken as under-read by the most
+  // assumed (they then read above the model exactly from search_start_ on).
+  for (double m : {std::max(0.0, model - bound), std::min(model + bound, peak_floor_)}) {
+    const double p = peaks >= 0.0 ? peaks + bound : (1.0 + largest_under_reading_) * m;
+    if (p - kPeakRamp * (peak_floor_ - m) >= m) return 1.0 + kPeakRamp;
+  }
+  return 1.0;
+}
+
+double SampleStore::edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]) {
+  double worst = 0.0;
+  for (int e = 0; e < 3; ++e) {
+    // Edge e joins vertices e + 1 (t = 0) and e + 2 (t = 1).
+    const auto at = [&](double t) {
+      Vec3 b = Vec3::Zero();
+      b[(e + 1) % 3] = 1.0 - t;
+      b[(e + 2) % 3] = t;
+      return probe.residual_at(p, uv, b);
+    };
+    const Vec3 quarter = at(0.25), half = at(0.5), three_quarters = at(0.75);
+    const EdgePeak peak = edge_peak(quarter, half, three_quarters);
+    // The measured peak, and the interpolant's where it reads higher (as the quadratic
+    // model's maximum counts beside the samples).
+    worst = std::max(
+        {worst, quarter.norm(), half.norm(), three_quarters.norm(), peak.value, at(peak.t).norm()});
+  }
+  return worst;
 }
 
 void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
@@ -231,7 +288,12 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
         model.add(pb, probe.residual_at(p, uv, pb));
       });
     }
-    worst = std::max(worst, model.sample_max() > ceiling ? model.sample_max() : model.estimate());
+    double estimate = model.sample_max() > ceiling ? model.sample_max() : model.estimate();
+    // The same reading the parent would get once welded (evaluate_face): were its edge peak
+    // left out here, a weld just below the bound could be split again at once, step after step.
+    if (peak_floor_ > 0.0 && estimate >= search_start_ && estimate <= ceiling)
+      estimate = peak_reading(estimate, edge_peaks(probe, p, uv));
+    worst = std::max(worst, estimate);
     if (worst > ceiling) return worst;
   }
   return worst;
@@ -349,11 +411,14 @@ void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
 }
 
 void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
+  grow_faces(r.face.size());  // every slot with its defaults first (peak_error_: -1)
   renumber_elements(face_start_, r.face, r.n_faces);
   renumber_elements(face_count_, r.face, r.n_faces);
   renumber_elements(face_error_, r.face, r.n_faces);
   renumber_elements(face_dense_, r.face, r.n_faces);
   renumber_elements(measured_, r.face, r.n_faces);
+  renumber_elements(model_error_, r.face, r.n_faces);
+  renumber_elements(peak_error_, r.face, r.n_faces);
   unresolved_.clear();  // scratch of one call
   compact();
 }

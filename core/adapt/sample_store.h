@@ -17,6 +17,7 @@
 // pool is compacted in face order. No allocation per operation once the pool has grown.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -40,6 +41,21 @@ class SampleStore final : public MeshListener {
   // Fresh patterns on every face of `mesh` (positions define the areas).
   void reset(const Mesh48& mesh);
   void set_density(double density) { density_ = density; }
+  // Faces whose model reading reaches `floor` read the larger of it and their edges' peaks
+  // (error_model.h, EdgePeak: three evaluations at the quarter points of each edge and one at
+  // the interpolant's peak, a dozen per face). Only faces near the split bound need it: the
+  // adapter sets the floor below T + eps by more than the quadratic model under-reads a peak
+  // (adapter.cpp, kPeakSearchBand), by at most `largest_under_reading` (relative). Below the
+  // floor the peaks count less, by kPeakRamp (sample_store.cpp) times the model's distance to
+  // it, down to where a peak under-read by that much no longer counts: faces read below that
+  // are not searched. So the reading has no jump: it moves by at most reading_gain() times what
+  // the model's reading or the peaks move (ErrorPredictor's bound). floor 0 (the default): no
+  // search.
+  void set_peak_search(double floor, double largest_under_reading);
+  // The most the face's reading can move, per unit of movement of its model reading and its
+  // edge peaks, while both stay within `bound` of their last values: 1 + kPeakRamp where the
+  // ramped peaks could then be the reading below the floor, 1 elsewhere.
+  double reading_gain(Face f, double bound) const;
   double density() const { return density_; }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
@@ -51,7 +67,8 @@ class SampleStore final : public MeshListener {
                       const std::vector<Face>& faces);
   void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
   // The L-infinity error the weld planned in `plan` would leave: every sample of the star
-  // measured against the two (one) parent triangles, with the quadratic model.
+  // measured against the two (one) parent triangles, with the quadratic model (and, at or
+  // above the peak search floor, the parents' edge peaks, as evaluate_faces would read them).
   // The estimate also covers the restored edge's midpoint (where the removed vertex sat),
   // measured first: when its error already exceeds `ceiling` the weld cannot be allowed,
   // and that lower bound is returned without evaluating the samples. Likewise a sample or a
@@ -64,7 +81,8 @@ class SampleStore final : public MeshListener {
   std::size_t refresh_patterns(const Mesh48& mesh);
 
   // L-infinity error of the face as of its last evaluation: the larger of its largest sample
-  // error and the maximum of the quadratic model fitted to its samples (error_model.h).
+  // error and the maximum of the quadratic model fitted to its samples (error_model.h), and,
+  // at or above the peak search floor, its edges' peaks.
   double face_error(Face f) const { return face_error_[f.idx]; }
   std::uint32_t count(Face f) const { return face_count_[f.idx]; }
   // False when the face's samples changed (split, weld, new pattern) since it was last
@@ -114,9 +132,17 @@ class SampleStore final : public MeshListener {
   void prefetch_face(const Mesh48& mesh, Face f) const;
   // Measures one face; returns whether its error estimate is resolved.
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
+  // The largest residual found along the triangle's three edges (EdgePeak).
+  static double edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]);
+  // The reading of a face whose model reads `model` (>= search_start_) and whose edges peak at
+  // `peaks` (set_peak_search).
+  double peak_reading(double model, double peaks) const;
   std::uint32_t target_count(const Mesh48& mesh, Face f) const;
 
   double density_;
+  double peak_floor_ = 0.0;
+  double largest_under_reading_ = 0.0;
+  double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
   std::uint64_t seed_;
   std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
@@ -126,6 +152,8 @@ class SampleStore final : public MeshListener {
   std::vector<double> face_error_;
   std::vector<std::uint8_t> face_dense_;      // pattern densified for an unresolved estimate
   std::vector<std::uint8_t> measured_;        // measured() per face
+  std::vector<double> model_error_;           // the quadratic model's reading (reading_gain)
+  std::vector<double> peak_error_;            // its edges' peaks (-1: not searched)
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
   std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
 };

@@ -72,10 +72,28 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
     const Vec3 pb = mesh.position(change.halves[h].parent_vertices[2]);
     normal += (pa - apex).cross(pb - apex);
   }
+  // Whether the vertex at p leaves the split's new faces facing up grad F at their corners
+  // (the fold guard).
+  const auto keeps_faces_up = [&](const Vec3& p) {
+    if (!split_fold_guard_) return true;
+    mesh.position(change.vertex) = p;
+    for (int h = 0; h < change.count; ++h)
+      for (const Face f : change.halves[h].children) {
+        const auto v = mesh.vertices(f);
+        const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+        const Vec3 normal = (b - a).cross(c - a);
+        for (const Vec3* corner : {&a, &b, &c}) {  // find_bad_faces' test (fold_repair.h)
+          Vec3 g;
+          implicit_->value_gradient(*corner, g);
+          if (!(normal.dot(g) > 0)) return false;
+        }
+      }
+    return true;
+  };
   const Vec3 d = newton.point - m;
   const double along = std::abs(d.dot(normal.normalized()));
   const bool sideways = normal.norm() > 0 && d.norm() > 0.1 * length && along < 0.7 * d.norm();
-  if (newton.converged && !sideways && d.norm() <= length) {
+  if (newton.converged && !sideways && d.norm() <= length && keeps_faces_up(newton.point)) {
     mesh.position(change.vertex) = newton.point;
     return true;
   }
@@ -93,11 +111,18 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
         ((implicit_->value(m + mid * n) < 0.0) == (f0 < 0.0) ? lo : hi) = mid;
       }
       const ProjectionResult r = project_to_surface(*implicit_, m + 0.5 * (lo + hi) * n, local);
-      if (r.converged && (r.point - m).norm() <= 4.0 * length) {
+      if (r.converged && (r.point - m).norm() <= 4.0 * length && keeps_faces_up(r.point)) {
         mesh.position(change.vertex) = r.point;
         return true;
       }
     }
+  }
+  // With the fold guard on and no place that keeps the new faces up: the vertex stays on its
+  // edge, where the new faces are their parents' halves (facing as they did); the next
+  // sub-step's correction moves it once the neck has widened.
+  if (split_fold_guard_) {
+    mesh.position(change.vertex) = m;
+    return false;
   }
   mesh.position(change.vertex) = newton.point;
   return newton.converged;

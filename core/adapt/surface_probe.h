@@ -51,7 +51,13 @@ class SurfaceProbe {
   // point is on a wall), the vertex goes instead to the nearest zero of F along the
   // diamond's normal, down into the crease. Without this a bridging edge never gets shorter
   // than the gap it spans and the split queue grows without end.
+  // With the fold guard on (the rest of a step in which the mesh's topology was repaired, issue
+  // 16), a place that turns one of the new faces against grad F is passed over for the next,
+  // and when every place does the vertex stays at the edge's midpoint: across a neck thinner
+  // than the edges (just after a merge) Newton or the nearest zero along the normal can land
+  // on the neck's far wall, and the faces folded there are beyond the fold repair's reach.
   bool project_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
+  void set_split_fold_guard(bool on) { split_fold_guard_ = on; }
 
   // Distance to the surface of the point with barycentric coordinates b over the triangle
   // (v0, v1, v2) (positions p, parameters uv). Implicit: the first-order distance
@@ -83,6 +89,7 @@ class SurfaceProbe {
   const ParametricSurface* parametric_ = nullptr;
   const ImplicitSurface* implicit_ = nullptr;
   double first_order_limit_ = 0.0;
+  bool split_fold_guard_ = false;
 };
 
 }  // namespace dynamesh

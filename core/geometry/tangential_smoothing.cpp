@@ -321,13 +321,17 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
   const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
   const auto n = static_cast<std::int64_t>(cap);
+  // A family that moves its points only normal to an axis: the move keeps the coordinate along
+  // it (Surface::invariant_axis).
+  const Vec3 axis = imp ? imp->invariant_axis() : Vec3::Zero();
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
     if (!mesh.is_alive(v)) continue;
-    const Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o);
+    Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o);
+    move -= move.dot(axis) * axis;
     const bool ok = par ? parametric_move(*par, mesh, v, move, w.uv[k], w.position[k])
                         : !w.boundary[k] && implicit_move(*imp, mesh, v, move, w.position[k],
                                                           failures, &w.value[k], &w.gradient[k]);

@@ -14,6 +14,9 @@
 // triangle against the surface normal or pushes its smallest angle below min_angle_deg (and
 // below what it was) is undone for that vertex; parameter-domain boundary vertices slide only
 // along their side and the domain's corners stay put; other open-boundary vertices stay put.
+// An implicit family that never moves its points along some axis (ImplicitSurface::
+// invariant_axis, the twist) gets moves without a component along it (the projection back
+// onto S may still change it slightly, as the normal correction does).
 #pragma once
 
 #include <cstddef>

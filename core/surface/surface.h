@@ -149,6 +149,13 @@ class ImplicitSurface : public Surface {
   virtual bool may_change_topology() const { return false; }
   virtual Vec3 to_rest(const Vec3& p) const { return p; }
   virtual Vec3 from_rest(const Vec3& q) const { return q; }
+
+  // A unit axis along which the family never moves its points (zero: none): every point stays
+  // in its plane normal to the axis over all times (twist: each cross-section turns within its
+  // plane). Tangential smoothing then keeps each vertex's coordinate along the axis
+  // (tangential_smoothing.h), so that smoothing on the deformed surface cannot carry vertices
+  // along a direction in which the surface itself never moves.
+  virtual Vec3 invariant_axis() const { return Vec3::Zero(); }
 };
 
 }  // namespace dynamesh

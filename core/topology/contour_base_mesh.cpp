@@ -30,14 +30,16 @@ Mesh48 make_contour_base_mesh(const ImplicitSurface& surface, const ContourBaseO
                              ? options.spacing
                              : box.size().maxCoeff() / std::max(2, options.cells_along_longest);
   const ContourGrid grid = make_contour_grid(box, spacing);
-  const ContourMesh contour = marching_tetrahedra(grid, sample_grid(surface, grid));
+  std::vector<double> values = sample_grid(surface, grid);
+  for (double& value : values) value -= options.level;
+  const ContourMesh contour = marching_tetrahedra(grid, values);
   if (contour.triangles.empty())
     throw std::invalid_argument(surface.name() + ": F has no zero crossing on a grid of spacing " +
                                 std::to_string(spacing) + " over the bounds");
   std::vector<Vec3> positions = contour.positions;
   constexpr double kMargin = 0.05;
   for (std::size_t i = 0; i < positions.size(); ++i)
-    positions[i] = root_on_edge(surface, contour.edges[i], kMargin);
+    positions[i] = root_on_edge(surface, contour.edges[i], kMargin, options.level);
   const std::vector<std::int64_t> partner = pair_triangles(positions, contour.triangles);
   std::size_t unpaired = 0;
   for (const std::int64_t p : partner) unpaired += p < 0;
@@ -48,10 +50,17 @@ Mesh48 make_contour_base_mesh(const ImplicitSurface& surface, const ContourBaseO
   // of a cell (near a point where grad F = 0 on the surface, as at the instant of a pinch, the
   // gradient flow leads away to the other sheet), keeps its place on its grid edge, within a
   // tenth of a cell of the surface; the adapter's normal correction tries again every step.
+  // A contour of F = level may travel twice the first-order distance |level| / |grad F| more.
   std::size_t failures = 0;
   for (const Vertex v : mesh.live_vertices()) {
     const ProjectionResult r = project_to_surface(surface, mesh.position(v));
-    if (r.converged && (r.point - mesh.position(v)).norm() <= 0.1 * spacing)
+    double reach = 0.1 * spacing;
+    if (options.level != 0.0) {
+      Vec3 g;
+      surface.value_gradient(mesh.position(v), g);
+      reach += 2.0 * std::abs(options.level) / std::max(g.norm(), 1e-300);
+    }
+    if (r.converged && (r.point - mesh.position(v)).norm() <= reach)
       mesh.position(v) = r.point;
     else
       ++failures;

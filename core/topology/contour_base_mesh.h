@@ -17,6 +17,11 @@ struct ContourBaseOptions {
   double spacing = 0.0;
   int cells_along_longest = 24;
   int smoothing_iterations = 4;
+  // The level set contoured, F = level, before every vertex is Newton-projected onto F = 0. A
+  // mid-run re-base next to an event sets it (TopologyMonitor::clear_level) so that a critical
+  // point closer to zero than the grid resolves lies on its own side of the contour: two tips
+  // closer than a cell are contoured apart, a new neck thinner than a cell is contoured open.
+  double level = 0.0;
 };
 
 struct ContourBaseInfo {

@@ -166,13 +166,14 @@ ContourMesh marching_tetrahedra(const ContourGrid& grid, const std::vector<doubl
   return Extractor(grid, values, margin).run();
 }
 
-Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin) {
+Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin,
+                  double level) {
   double a = 0.0, b = 1.0;
-  double fa = surface.value(edge[0]), fb = surface.value(edge[1]);
+  double fa = surface.value(edge[0]) - level, fb = surface.value(edge[1]) - level;
   int side = 0;
   for (int i = 0; i < 40 && fa < 0 && fb >= 0; ++i) {
     const double s = (a * fb - b * fa) / (fb - fa);
-    const double fs = surface.value((1 - s) * edge[0] + s * edge[1]);
+    const double fs = surface.value((1 - s) * edge[0] + s * edge[1]) - level;
     if (fs < 0) {
       a = s, fa = fs;
       if (side == -1) fb *= 0.5;

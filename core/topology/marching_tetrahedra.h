@@ -50,7 +50,8 @@ ContourMesh marching_tetrahedra(const ContourGrid& grid, const std::vector<doubl
 // The zero of F on a contour vertex's grid edge (inside, outside), by regula falsi with the
 // Illinois fix, kept at least `margin` (a fraction of the edge) from either end: a point of
 // the surface that belongs to this edge, unlike one found by Newton steps, which near a
-// critical point of F may run off to another sheet.
-Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin);
+// critical point of F may run off to another sheet. With a `level`: the root of F - level.
+Vec3 root_on_edge(const ImplicitSurface& surface, const std::array<Vec3, 2>& edge, double margin,
+                  double level = 0.0);
 
 }  // namespace dynamesh

@@ -1,5 +1,6 @@
 #include "core/topology/topology_events.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -47,6 +48,15 @@ long euler_change(int index, bool going_negative) {
 // within a cell by |Hess F| diagonal^2 / 2 (its second-order model).
 bool within_resolution(const CriticalPoint& cp, double diagonal) {
   return std::abs(cp.value) <= 0.5 * cp.curvature * diagonal * diagonal;
+}
+
+// Whether a critical point lies inside, F < 0. One whose value is zero to within rounding
+// (1e-9 of the grid's resolution bound: an event on a step time, such as the torus pinched at
+// t = 0.09 / 0.12 = 0.75) counts as outside, as F = 0 does: at that instant the surface is a
+// double cone, and only the side where the cone's two sheets are apart (two tips, or two
+// blobs touching) has an embedded mesh; the sign of F's rounding error must not choose.
+bool inside(const CriticalPoint& cp, double diagonal) {
+  return cp.value < -1e-9 * 0.5 * cp.curvature * diagonal * diagonal;
 }
 
 }  // namespace
@@ -117,9 +127,25 @@ ContourGrid TopologyMonitor::grid_for(const ImplicitSurface& surface) const {
 void TopologyMonitor::reset(const ImplicitSurface& surface, const Mesh48& mesh) {
   const ContourGrid grid = grid_for(surface);
   spacing_ = grid.spacing().maxCoeff();
+  diagonal_ = grid.spacing().norm();
   previous_ = find_critical_points(surface, grid, sample_field(surface, grid), HUGE_VAL);
   previous_time_ = surface.time();
   mesh_topology_ = summarize_topology(mesh);
+}
+
+std::optional<double> TopologyMonitor::clear_level(double diagonal, double fraction) const {
+  // F - L >= margin where the point is outside (as check() counts sides), F - L <= -margin
+  // where it is inside.
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  for (const CriticalPoint& cp : previous_) {
+    const double margin = fraction * 0.5 * cp.curvature * diagonal * diagonal;
+    if (inside(cp, diagonal_))
+      lo = std::max(lo, cp.value + margin);
+    else
+      hi = std::min(hi, cp.value - margin);
+  }
+  if (lo > hi) return std::nullopt;
+  return std::clamp(0.0, lo, hi);
 }
 
 TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
@@ -127,6 +153,7 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   TopologyCheck out;
   const ContourGrid grid = grid_for(surface);
   spacing_ = grid.spacing().maxCoeff();
+  diagonal_ = grid.spacing().norm();
   const GridField field = sample_field(surface, grid);
   std::vector<CriticalPoint> now = find_critical_points(surface, grid, field, HUGE_VAL);
   const double t0 = previous_time_, t1 = surface.time();
@@ -141,11 +168,13 @@ TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
       const double d = (old.position - cp.position).norm();
       if (d < reach && (!match || d < (match->position - cp.position).norm())) match = &old;
     }
-    if (!match || (match->value < 0) == (cp.value < 0)) continue;
-    const double s = match->value / (match->value - cp.value);
+    if (!match) continue;
+    const bool now_inside = inside(cp, diagonal);
+    if (inside(*match, diagonal) == now_inside) continue;
+    const double s = std::clamp(match->value / (match->value - cp.value), 0.0, 1.0);
     out.events.push_back({t0 + s * (t1 - t0), (1 - s) * match->position + s * cp.position,
-                          kind_of(cp.index, cp.value < 0)});
-    out.expected_euler += euler_change(cp.index, cp.value < 0);
+                          kind_of(cp.index, now_inside)});
+    out.expected_euler += euler_change(cp.index, now_inside);
   }
   previous_ = std::move(now);
   previous_time_ = t1;

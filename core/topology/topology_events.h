@@ -21,6 +21,7 @@
 // happened or a trusted contour disagrees with it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,12 @@ class TopologyMonitor {
   void mesh_rebuilt(const Mesh48& mesh) { mesh_topology_ = summarize_topology(mesh); }
   // The watching grid's spacing (its largest cell side) at the last reset() or check().
   double spacing() const { return spacing_; }
+  // A level L for a re-base's contour of F = L (ContourBaseOptions::level) on a grid of cell
+  // diagonal `diagonal`: every critical point found at the last check keeps its side, F - L
+  // of the sign of F, by at least `fraction` of the bound within which that grid's
+  // piecewise-linear contour may be wrong about it (|Hess F| diagonal^2 / 2). The L nearest 0;
+  // none when two critical points ask for opposite sides.
+  std::optional<double> clear_level(double diagonal, double fraction) const;
 
  private:
   ContourGrid grid_for(const ImplicitSurface& surface) const;
@@ -72,6 +79,7 @@ class TopologyMonitor {
   double previous_time_ = 0.0;
   MeshTopologySummary mesh_topology_;
   double spacing_ = 0.0;
+  double diagonal_ = 0.0;  // of the watching grid's cells: which side a critical point is on
 };
 
 }  // namespace dynamesh

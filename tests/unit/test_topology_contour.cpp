@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "core/surface/scene_registry.h"
 #include "core/topology/contour_base_mesh.h"
 #include "core/topology/marching_tetrahedra.h"
+#include "core/topology/topology_events.h"
 #include "core/topology/triangle_pairing.h"
 #include "dense_error.h"
 #include "tests/support/mesh_validity.h"
@@ -182,6 +185,51 @@ TEST(TopologyContour, MendedPairingPairsDisksWithoutAPerfectMatching) {
     // The split vertices lie on interior edges: the border is the same chain of edges.
     EXPECT_EQ(border(triangles), border(disk.triangles)) << disk.name;
   }
+}
+
+}  // namespace
+}  // namespace dynamesh
+
+namespace dynamesh {
+namespace {
+
+// Just after a split the two new tips are closer than the grid's cells, and the contour of
+// F = 0 on the grid may still join them (issue 16: wide blobs along (1, 1, 0), s^2 = 0.35,
+// split at t = 0.85203; a re-base there was refined without end). The contour of F = level,
+// the level from TopologyMonitor::clear_level, has the two components F has.
+TEST(TopologyContour, ContourClearOfTheCriticalPointsSeparatesTipsCloserThanACell) {
+  const std::string at = "(0.3+0.8*(2*t-1)^2)";
+  const auto blob = [&](const std::string& sign) {
+    return "exp(-((x" + sign + "0.70710678*" + at + ")^2+(y" + sign + "0.70710678*" + at +
+           ")^2+z^2)/0.35)";
+  };
+  auto surface = make_scene(
+      "expr", {},
+      {{"implicit", "0.5 - " + blob("-") + " - " + blob("+")}, {"bounds", "-2,-2,-1.5,2,2,1.5"}});
+  auto& F = dynamic_cast<ImplicitSurface&>(*surface);
+  const double split = 0.5 + 0.5 * std::sqrt((std::sqrt(0.35 * std::log(4.0)) - 0.3) / 0.8);
+  F.set_time(split + 3e-4);
+  const test::SolidTopology truth =
+      test::solid_topology([&](const Vec3& p) { return F.value(p); }, F.bounds(), 400);
+  ASSERT_EQ(truth.components, 2);
+  TopologyMonitor monitor;
+  monitor.reset(F, Mesh48());
+  ContourBaseOptions o;  // 24 cells along the longest side, as a re-base's first try
+  const MeshTopologySummary plain = summarize_topology(make_contour_base_mesh(F, o));
+  EXPECT_EQ(plain.components, 1) << "the plain contour no longer joins the tips: pick a time "
+                                    "closer to the split";
+  const Box3 box = F.bounds();
+  const double diagonal = make_contour_grid(box, box.size().maxCoeff() / 24).spacing().norm();
+  const std::optional<double> level = monitor.clear_level(diagonal, 0.25);
+  ASSERT_TRUE(level.has_value());
+  EXPECT_LT(*level, 0.0);  // the saddle is outside: a smaller inside
+  o.level = *level;
+  const Mesh48 mesh = make_contour_base_mesh(F, o);
+  const MeshTopologySummary cleared = summarize_topology(mesh);
+  EXPECT_EQ(cleared.components, 2);
+  EXPECT_EQ(cleared.euler, 4);
+  const test::MeshValidity v = test::check_mesh_validity(mesh);
+  EXPECT_TRUE(v.embedded_closed_manifold()) << v.describe();
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 // Topology change through the real dynamesh-cli on variants of the issue's two examples (issue
 // 16: "hidden variants will be checked"): other directions and centres of the blobs, bounds
 // from tight to wide, other step counts, the torus pinched elsewhere and at another time. Every
-// exported frame is judged, not the end state: a closed embedded manifold (exact CGAL test), and
-// farther than 0.04 from an event the closed-form number of components and Euler characteristic;
-// the run finishes (status 0) and reports each true event, of its kind, within one step.
+// exported frame is judged, not the end state: a closed embedded manifold (exact CGAL test)
+// whose dense error (its own sampling, the Newton distance to F) is within (T + eps) * 1.10 but
+// at the event's instant, and farther than 0.04 from an event the closed-form number of
+// components and Euler characteristic, which a flood-filled fine voxel grid of F < 0 confirms;
+// the run finishes (status 0) and reports each true event, of its kind, within one step, once.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,13 +14,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_runner.h"
+#include "core/surface/scene_registry.h"
+#include "dense_error.h"
+#include "ply_reader.h"
 #include "tests/support/mesh_validity.h"
+#include "topology_measure.h"
 
 namespace dynamesh {
 namespace {
@@ -30,6 +38,7 @@ const std::string kCli = std::string(DYNAMESH_BINARY_DIR) + "/dynamesh-cli";
 struct Variant {
   std::string name, formula, bounds;
   int steps = 40;
+  int max_rebuilds = -1;                               // global re-bases allowed (-1: not judged)
   std::vector<std::pair<double, std::string>> events;  // true time, kind
   // Components and Euler characteristic at t, away from the events.
   std::pair<long, long> (*topology)(double t, const std::vector<double>& times) = nullptr;
@@ -80,6 +89,25 @@ Variant torus_pinch(const std::string& name, double phi, double c, int steps) {
   return v;
 }
 
+// The largest Newton distance to F over a frame read back from its PLY, sampled densely
+// (dense_error.h's points: random ones at `density` per unit area, the corners, the midpoints).
+double dense_error_of(const test::PlyData& ply, const Surface& surface, double density) {
+  std::mt19937_64 rng(7);
+  double worst = 0;
+  const Vec2 uv[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  for (const auto& f : ply.faces) {
+    Vec3 p[3];
+    for (int i = 0; i < 3; ++i) {
+      const auto& row = ply.vertices[f[i]];
+      p[i] = Vec3(row[0], row[1], row[2]);
+    }
+    const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const auto n = static_cast<int>(std::max(3.0, std::ceil(density * area)));
+    worst = std::max(worst, test::dense_triangle_error(surface, p, uv, n, rng));
+  }
+  return worst;
+}
+
 void run_and_judge(const Variant& v) {
   ASSERT_TRUE(fs::exists(kCli)) << kCli;
   const fs::path dir = fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" /
@@ -88,7 +116,8 @@ void run_and_judge(const Variant& v) {
   fs::create_directories(dir);
   std::string command = test::shell_quoted(kCli) + " run --scene expr --quiet --implicit " +
                         test::shell_quoted(v.formula) + " --bounds " + v.bounds + " --steps " +
-                        std::to_string(v.steps) + " --export " +
+                        std::to_string(v.steps) + " --stats " +
+                        test::shell_quoted((dir / "stats.csv").string()) + " --export " +
                         test::shell_quoted((dir / "frames").string()) + " > " +
                         test::shell_quoted((dir / "out").string()) + " 2> " +
                         test::shell_quoted((dir / "err").string());
@@ -105,10 +134,11 @@ void run_and_judge(const Variant& v) {
   std::vector<double> times;
   for (const auto& [time, kind] : v.events) {
     times.push_back(time);
-    bool found = false;
+    int found = 0;
     for (const auto& e : json["topology_events"])
-      found = found || (e["kind"] == kind && std::abs(e["time"].get<double>() - time) <= step);
-    EXPECT_TRUE(found) << v.name << ": no " << kind << " near t=" << time << "\n" << err.str();
+      found += e["kind"] == kind && std::abs(e["time"].get<double>() - time) <= step;
+    EXPECT_EQ(found, 1) << v.name << ": " << kind << "s reported near t=" << time << "\n"
+                        << err.str();
   }
   for (const auto& e : json["topology_events"]) {
     bool expected = false;
@@ -116,6 +146,12 @@ void run_and_judge(const Variant& v) {
       expected = expected || std::abs(e["time"].get<double>() - time) <= step;
     EXPECT_TRUE(expected) << v.name << ": unexpected " << e.dump() << "\n" << err.str();
   }
+  // The CLI's defaults: T = 0.008, eps = T / 4, density 2000 (dense: 5 times that).
+  constexpr double kT = 0.008, kEps = 0.002, kDenseDensity = 5 * 2000.0, kSlack = 1.10;
+  std::unique_ptr<Surface> surface =
+      make_scene("expr", {}, {{"implicit", v.formula}, {"bounds", v.bounds}});
+  const auto& F = dynamic_cast<const ImplicitSurface&>(*surface);
+  double worst_ratio = 0;
   for (int i = 0; i <= v.steps; ++i) {
     char file[32];
     std::snprintf(file, sizeof file, "frame_%05d.ply", i);
@@ -126,13 +162,51 @@ void run_and_judge(const Variant& v) {
     EXPECT_TRUE(m.embedded_closed_manifold()) << frame << ": " << m.describe();
     double nearest = HUGE_VAL;
     for (const double time : times) nearest = std::min(nearest, std::abs(t - time));
+    surface->set_time(t);
+    // At an event's instant F has a double cone, where the Newton path is not a distance
+    // (test_topology_events.cpp): that one frame's error is not judged.
+    if (nearest > 1e-9) {
+      const double ratio = dense_error_of(test::read_ply((dir / "frames" / file).string()),
+                                          *surface, kDenseDensity) /
+                           (kT + kEps);
+      worst_ratio = std::max(worst_ratio, ratio);
+      EXPECT_LE(ratio, kSlack) << frame << ": dense error / (T + eps)";
+    }
     if (nearest <= 0.04) continue;
     const auto [components, euler] = v.topology(t, times);
     EXPECT_EQ(m.components, components) << frame;
     EXPECT_EQ(m.euler(), euler) << frame;
+    const test::SolidTopology ref =
+        test::solid_topology([&](const Vec3& p) { return F.value(p); }, F.bounds(), 96);
+    EXPECT_EQ(ref.components, components) << frame << " (voxel reference)";
+    EXPECT_EQ(ref.surface_euler, euler) << frame << " (voxel reference)";
   }
-  std::printf("%s: rebuilds %d, local repairs %d\n", v.name.c_str(), json["rebuilds"].get<int>(),
-              json["local_repairs"].get<int>());
+  // Coherence: the mean over the steps of the fraction of vertices kept (the CSV's column).
+  std::ifstream csv(dir / "stats.csv");
+  std::string header;
+  std::getline(csv, header);
+  std::size_t column = 0;
+  {
+    std::stringstream names(header);
+    for (std::string name; std::getline(names, name, ',') && name != "kept_fraction";) ++column;
+  }
+  double survival = 0;
+  int rows = 0;
+  for (std::string row; std::getline(csv, row);) {
+    std::stringstream cells(row);
+    std::string cell;
+    for (std::size_t c = 0; c <= column; ++c) std::getline(cells, cell, ',');
+    if (rows++ > 0) survival += std::stod(cell);  // row 0: the initial adaptation
+  }
+  ASSERT_EQ(rows, v.steps + 1) << v.name;
+  survival /= v.steps;
+  EXPECT_GE(survival, 0.9) << v.name << ": mean vertex survival";
+  if (v.max_rebuilds >= 0) {
+    EXPECT_LE(json["rebuilds"].get<int>(), v.max_rebuilds) << v.name << "\n" << err.str();
+  }
+  std::printf("%s: rebuilds %d, local repairs %d, survival %.4f, worst dense error %.3f (T+eps)\n",
+              v.name.c_str(), json["rebuilds"].get<int>(), json["local_repairs"].get<int>(),
+              survival, worst_ratio);
   fs::remove_all(dir);
 }
 
@@ -151,6 +225,34 @@ TEST(TopologyVariantsCli, OffCentreBlobsAlongYInWideBounds) {
 
 TEST(TopologyVariantsCli, TorusPinchedElsewhereAndEarlier) {
   run_and_judge(torus_pinch("torus-135deg", 2.356, 0.3, 20));
+}
+
+// The variant sweep's failures (session 5). Wide blobs along (1, 1, 0): the fold net re-based
+// the mesh just before the split, the split's local repair was refused, and the re-base's
+// contour on the grid still joined the two tips (closer than a cell): the split queue refined
+// that bridge up to the triangle budget (no end in 300 s).
+TEST(TopologyVariantsCli, WideBlobsSplitAfterARebaseFinish) {
+  run_and_judge(
+      blobs("wide-110", Vec3(1, 1, 0), Vec3::Zero(), 0.35, 0.3, 0.8, "-2,-2,-1.5,2,2,1.5", 40));
+}
+
+// The issue's blobs as a formula in 20 steps: the merge's local repair was followed by folds
+// (17 faces: the split pass across the new neck, thinner than the edges, and equal sub-steps
+// giving the first one most of its widening), and the fold net rebuilt the whole mesh.
+TEST(TopologyVariantsCli, IssueBlobsIn20StepsMergeWithoutARebuild) {
+  Variant v =
+      blobs("x-20", Vec3::UnitX(), Vec3::Zero(), 0.25, 0.2, 0.8, "-1.8,-0.8,-0.8,1.8,0.8,0.8", 20);
+  v.max_rebuilds = 0;
+  run_and_judge(v);
+}
+
+// The torus pinched at 40 degrees at t = 0.75, a step time: the event falls on a frame, where
+// the surface is a double cone. The mesh was rebuilt twice (a re-base on the instant that
+// already had the new topology, then the crossing counted again at the next step).
+TEST(TopologyVariantsCli, TorusPinchOnAStepTimeIsReportedOnce) {
+  Variant v = torus_pinch("torus-40deg", 0.7, 0.12, 20);
+  v.max_rebuilds = 0;  // the event's instant is repaired locally
+  run_and_judge(v);
 }
 
 }  // namespace
