@@ -347,11 +347,9 @@ void statistics_section(const ViewerState& state, const PanelInfo& info) {
   // Time per phase, as bars sharing the step's total.
   const PhaseSeconds& p = s.seconds;
   ImGui::Text("step %.1f ms   %.0f fps", 1e3 * p.total, static_cast<double>(info.fps));
-  const std::pair<const char*, double> phases[] = {{"project", p.project},
-                                                   {"smooth", p.smooth},
-                                                   {"sample", p.sample},
-                                                   {"weld", p.weld},
-                                                   {"split", p.split}};
+  const std::pair<const char*, double> phases[] = {
+      {"project", p.project}, {"smooth", p.smooth}, {"sample", p.sample},
+      {"weld", p.weld},       {"split", p.split},   {"renumber", p.renumber}};
   for (const auto& [name, seconds] : phases) {
     char overlay[48];
     std::snprintf(overlay, sizeof overlay, "%s %.1f ms", name, 1e3 * seconds);

@@ -64,6 +64,13 @@ struct AdaptOptions {
   // slivers left by the motion are relaxed away before the frame is published.
   SubstepOptions substeps;
   FoldRepairOptions fold_repair;
+  // Memory locality (core/mesh/spatial_order.h): at the end of initialize() and of a step,
+  // when more than renumber_scattered_share of the faces have corners further apart in the
+  // vertex arrays than kLocalityWindow (splits append new vertices far from their parents),
+  // the mesh is renumbered along a Morton curve. Results are those of an unrenumbered run up
+  // to rounding (sums over a vertex's faces are taken in another order).
+  bool renumber = true;
+  double renumber_scattered_share = 0.15;
 };
 
 }  // namespace dynamesh

@@ -10,6 +10,7 @@
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/mesh/spatial_order.h"
 #include "core/surface/projection.h"
 #include "core/topology/topology_events.h"
 
@@ -66,7 +67,7 @@ struct WeldEntry {
 // when each vertex was born (for temporal coherence).
 class Adapter::Tracker final : public MeshListener {
  public:
-  explicit Tracker(const SurfaceProbe& probe) : probe_(probe) {}
+  Tracker(const SurfaceProbe& probe, Adapter& adapter) : probe_(probe), adapter_(adapter) {}
 
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
     grow(mesh);
@@ -87,6 +88,23 @@ class Adapter::Tracker final : public MeshListener {
       ++stamp[change.halves[h].children[1].idx];
       if (recording_ring_changes) ring_changed(mesh, change.halves[h].children[0]);
     }
+  }
+  // The tracker's own per-element data, and the adapter's (its listener for those).
+  void after_renumber(Mesh48&, const Renumbering& r) override {
+    renumber_elements(stamp, r.face, r.n_faces);
+    renumber_elements(birth_step, r.vertex, r.n_vertices);
+    renumber_handles(touched, r.face);
+    renumber_handles(rings_changed, r.vertex);
+    Adapter& a = adapter_;
+    // Vertices born since these were recorded have no entry: NaN, never a position.
+    for (std::vector<Vec3>* points : {&a.start_positions_, &a.rest_points_, &a.displacement_}) {
+      points->resize(r.vertex.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+      renumber_elements(*points, r.vertex, r.n_vertices);
+    }
+    renumber_elements(a.projection_starts_, r.vertex, r.n_vertices);
+    a.starts_planned_ = false;
+    renumber_handles(a.to_measure_, r.face);
+    for (std::vector<Face>& faces : a.bad_faces_) renumber_handles(faces, r.face);
   }
   // Every vertex whose one-ring a split or weld changed is a corner of one of the faces it
   // left (the welded vertex itself is gone).
@@ -114,6 +132,7 @@ class Adapter::Tracker final : public MeshListener {
 
  private:
   const SurfaceProbe& probe_;
+  Adapter& adapter_;
 };
 
 Adapter::Adapter(Surface& surface, const AdaptOptions& options, CriterionList criteria)
@@ -122,7 +141,7 @@ Adapter::Adapter(Surface& surface, const AdaptOptions& options, CriterionList cr
       options_(options),
       criteria_(std::move(criteria)),
       samples_(options.density, options.seed),
-      tracker_(std::make_unique<Tracker>(probe_)) {
+      tracker_(std::make_unique<Tracker>(probe_, *this)) {
   set_peak_search(samples_, options);
 }
 
@@ -163,6 +182,7 @@ const StepStats& Adapter::initialize() {
   if (options_.structural) settle();
   stats_.seconds.weld = clock.lap();
   publish_repaired();
+  renumber_if_scattered();
   finish_stats();
   stats_.seconds.total += seconds;
   return stats_;
@@ -203,6 +223,7 @@ const StepStats& Adapter::initialize_here() {
   }
   watch_topology();
   publish_repaired();
+  renumber_if_scattered();
   finish_stats();
   return stats_;
 }
@@ -260,6 +281,7 @@ const StepStats& Adapter::step(double t) {
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
   if (topology_) rebuild_if_crossed();
+  renumber_if_scattered();
   finish_stats();
   return stats_;
 }
@@ -722,6 +744,21 @@ void Adapter::split_pass(bool initial) {
   stats_.splits += tracker_->vertices_created - created_before;
 }
 
+void Adapter::renumber(const Renumbering& renumbering) {
+  // The mesh tells every listener: the tracker (which also moves the adapter's own per-vertex
+  // arrays), the samples, the predictor and the smoothing workspace.
+  mesh_.renumber(renumbering);
+}
+
+void Adapter::renumber_if_scattered() {
+  if (!options_.renumber || scattered_face_share(mesh_) <= options_.renumber_scattered_share)
+    return;
+  Stopwatch clock;
+  renumber(spatial_renumbering(mesh_));
+  stats_.renumbered = true;
+  stats_.seconds.renumber += clock.lap();
+}
+
 void Adapter::finish_stats() {
   stats_.triangles = mesh_.n_faces();
   stats_.vertices = mesh_.n_vertices();
@@ -751,7 +788,7 @@ void Adapter::finish_stats() {
   stats_.projection_failures = tracker_->projection_failures;
   tracker_->projection_failures = 0;
   const PhaseSeconds& p = stats_.seconds;
-  stats_.seconds.total = p.project + p.smooth + p.sample + p.weld + p.split;
+  stats_.seconds.total = p.project + p.smooth + p.sample + p.weld + p.split + p.renumber;
 }
 
 MeshSnapshot Adapter::snapshot(const SnapshotFields& fields) const {

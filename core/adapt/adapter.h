@@ -72,6 +72,11 @@ class Adapter {
   const StepStats& stats() const { return stats_; }
   MeshSnapshot snapshot(const SnapshotFields& fields = {}) const;
 
+  // Renumbers the mesh's elements (Mesh48::renumber); everything the adapter keeps per
+  // element follows. Between steps; the automatic renumbering (AdaptOptions::renumber) uses
+  // spatial_renumbering.
+  void renumber(const Renumbering& renumbering);
+
  private:
   class Tracker;
 
@@ -124,6 +129,8 @@ class Adapter {
   bool split_refused(Face f) const;
   bool pathological_star(const DiamondChange& plan) const;
   void finish_stats();
+  // AdaptOptions::renumber: along a Morton curve when the numbering has scattered.
+  void renumber_if_scattered();
   void record_rest_points();
   // Topology change (issue 16, topology_events.h): starts watching F when the surface may
   // change topology; each step, reports F's events and, when the mesh's topology no longer

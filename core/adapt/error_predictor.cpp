@@ -61,6 +61,8 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
     reference_.resize(mesh.face_capacity());
     has_reference_.resize(mesh.face_capacity(), 0);
     bound_.resize(mesh.face_capacity(), 0.0);
+    for (std::size_t f = rotation_.size(); f < mesh.face_capacity(); ++f)
+      rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
   }
 }
 
@@ -164,7 +166,7 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
     if (!mesh.is_alive(f)) continue;
     const auto k = static_cast<std::size_t>(i);
     bool needed = !has_reference_[k] || !samples.measured(f) || samples.densified(f) ||
-                  static_cast<std::uint64_t>(i) % kRotation == phase || moved_too_far(mesh, f);
+                  rotation_[k] == phase || moved_too_far(mesh, f);
     if (!needed) {
       // The face's frames are this step's (begin_step), its reference its last measurement's.
       const Coefficients now = coefficients(mesh, probe, f);
@@ -197,6 +199,20 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
 void ErrorPredictor::after_split(Mesh48& mesh, const DiamondChange& change) {
   grow(mesh);
   frame_step_[change.vertex.idx] = 0;
+}
+
+void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
+  renumber_elements(frame_, r.vertex, r.n_vertices);
+  renumber_elements(frame_step_, r.vertex, r.n_vertices);
+  renumber_elements(moved_, r.vertex, r.n_vertices);
+  renumber_elements(evaluated_, r.vertex, r.n_vertices);
+  renumber_elements(reference_, r.face, r.n_faces);
+  renumber_elements(has_reference_, r.face, r.n_faces);
+  renumber_elements(bound_, r.face, r.n_faces);
+  for (std::size_t f = rotation_.size(); f < r.face.size(); ++f)  // slots not seen yet
+    rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
+  renumber_elements(rotation_, r.face, r.n_faces);
+  flags_.clear();  // select's scratch
 }
 
 void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,

@@ -114,6 +114,8 @@ class ErrorPredictor final : public MeshListener {
   // A split-born vertex (its id may be one a weld freed this step) has no frame yet.
   void after_split(Mesh48& mesh, const DiamondChange& change) override;
   void after_weld(Mesh48&, const DiamondChange&) override {}
+  // Every face's reference and rotation slot, every vertex's frame move to the new ids.
+  void after_renumber(Mesh48& mesh, const Renumbering& renumbering) override;
 
  private:
   // First-order data of a vertex: implicit: the unit normal (a); parametric: S_u (a), S_v (b).
@@ -144,6 +146,9 @@ class ErrorPredictor final : public MeshListener {
   std::vector<Coefficients> reference_;
   std::vector<std::uint8_t> has_reference_;
   std::vector<double> bound_;
+  // Each face's turn in the rotation (id % kRotation when its slot was made): kept through a
+  // renumbering, so that no face waits more than kRotation steps across one either.
+  std::vector<std::uint8_t> rotation_;
   std::vector<std::uint8_t> flags_;  // select's scratch
   std::size_t skipped_ = 0;
 };

@@ -410,4 +410,17 @@ void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
   }
 }
 
+void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
+  grow_faces(r.face.size());  // every slot with its defaults first (peak_error_: -1)
+  renumber_elements(face_start_, r.face, r.n_faces);
+  renumber_elements(face_count_, r.face, r.n_faces);
+  renumber_elements(face_error_, r.face, r.n_faces);
+  renumber_elements(face_dense_, r.face, r.n_faces);
+  renumber_elements(measured_, r.face, r.n_faces);
+  renumber_elements(model_error_, r.face, r.n_faces);
+  renumber_elements(peak_error_, r.face, r.n_faces);
+  unresolved_.clear();  // scratch of one call
+  compact();
+}
+
 }  // namespace dynamesh

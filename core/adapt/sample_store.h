@@ -111,6 +111,9 @@ class SampleStore final : public MeshListener {
 
   void after_split(Mesh48& mesh, const DiamondChange& change) override;
   void after_weld(Mesh48& mesh, const DiamondChange& change) override;
+  // Each face keeps its samples and error under its new id; the pool is then compacted in
+  // the new face order, so that measuring faces in id order streams through it.
+  void after_renumber(Mesh48& mesh, const Renumbering& renumbering) override;
 
  private:
   struct Sample {

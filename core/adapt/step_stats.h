@@ -12,6 +12,7 @@ namespace dynamesh {
 
 struct PhaseSeconds {
   double project = 0, smooth = 0, sample = 0, weld = 0, split = 0, total = 0;
+  double renumber = 0;  // Adapter: renumbering the mesh along a space-filling curve (in total)
 };
 
 struct StepStats {
@@ -65,6 +66,10 @@ struct StepStats {
   double repair_spacing = 0.0;  // the coarsest contour spacing of this step's repair patches
   std::vector<std::string> repair_refusals;  // why a local repair was not done
   bool rebuilt = false;
+  // The mesh's elements were renumbered along a space-filling curve at the end of the step
+  // (AdaptOptions::renumber): ids are not kept across such a step (survival is counted through
+  // the renumbering).
+  bool renumbered = false;
   std::size_t folds_repaired = 0;  // faces the correction turned over, which made it rebuild
   std::size_t folds_remeshed = 0;  // ... which were re-meshed locally instead (no rebuild)
   double topology_seconds = 0.0;

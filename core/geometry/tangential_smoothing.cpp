@@ -50,6 +50,9 @@ struct SmoothingWorkspace::Buffers {
   std::vector<Vec3> mesh_normal;                // unit, area-weighted (zero if degenerate)
   std::vector<double> mean_edge;                // mean length of the ring's edges
   std::vector<CachedFrame> cached;              // frame reuse (SmoothingWorkspace)
+  // Each vertex's turn to be evaluated afresh (frame_reusable (a)): its id modulo
+  // kFrameReuseCalls when its slot was made, kept through a renumbering.
+  std::vector<std::uint8_t> phase;
   std::uint64_t calls = 0;                      // smooth_once calls with this workspace
   bool reuse = false;                           // frames may be reused (a caller's workspace)
   std::size_t reused = 0;                       // frames reused by the last call
@@ -164,7 +167,8 @@ PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v)
 // a property of the surface at its position; from one step to the next a vertex moves little
 // and the surface under it changes little, so the frame evaluated before is reused when all of
 //   (a) it is less than kFrameReuseCalls calls old; vertex i is evaluated afresh on every
-//       call where (i + call) % kFrameReuseCalls == 0, so no frame lives longer;
+//       call where (phase_i + call) % kFrameReuseCalls == 0 (phase_i: i modulo
+//       kFrameReuseCalls when the slot was made), so no frame lives longer;
 //   (b) the vertex moved at most kFrameReuseAngle / |k|max since (so that, on the surface as
 //       it was, its normal turned by at most kFrameReuseAngle radians) and at most
 //       kFrameReuseAngle times its ring's mean edge length (a sudden jump, a flat region);
@@ -184,9 +188,14 @@ PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v)
 constexpr std::uint64_t kFrameReuseCalls = 8;
 constexpr double kFrameReuseAngle = 0.05;  // radians
 
+void grow_phases(Work& w, std::size_t capacity) {
+  for (std::size_t i = w.phase.size(); i < capacity; ++i)
+    w.phase.push_back(static_cast<std::uint8_t>(i % kFrameReuseCalls));
+}
+
 bool frame_reusable(const Work& w, std::size_t i, const Vec3& p) {
   const CachedFrame& c = w.cached[i];
-  if (c.call == 0 || (i + w.calls) % kFrameReuseCalls == 0 ||
+  if (c.call == 0 || (w.phase[i] + w.calls) % kFrameReuseCalls == 0 ||
       w.calls + 1 - c.call >= kFrameReuseCalls)
     return false;
   const double moved = (p - c.at).norm();
@@ -199,7 +208,10 @@ bool frame_reusable(const Work& w, std::size_t i, const Vec3& p) {
 void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingOptions& o,
                     Work& w) {
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
-  if (w.reuse && w.cached.size() < mesh.vertex_capacity()) w.cached.resize(mesh.vertex_capacity());
+  if (w.reuse && w.cached.size() < mesh.vertex_capacity()) {
+    w.cached.resize(mesh.vertex_capacity());
+    grow_phases(w, mesh.vertex_capacity());
+  }
   double lo = 1e300, hi = 0.0;
   std::size_t reused = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(min   \
@@ -339,6 +351,16 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
 }
 
 }  // namespace
+
+void SmoothingWorkspace::after_renumber(Mesh48&, const Renumbering& r) {
+  Buffers& w = *buffers_;
+  grow_phases(w, r.vertex.size());
+  renumber_elements(w.phase, r.vertex, r.n_vertices);
+  renumber_elements(w.cached, r.vertex, r.n_vertices);
+  renumber_elements(w.moved, r.vertex, r.n_vertices);
+  renumber_elements(w.value, r.vertex, r.n_vertices);
+  renumber_elements(w.gradient, r.vertex, r.n_vertices);
+}
 
 SmoothingResult smooth_tangentially(Mesh48& mesh, const Surface& surface,
                                     const SmoothingOptions& options,

@@ -52,8 +52,8 @@ struct SmoothingResult {
 // Scratch buffers of smooth_tangentially, kept by a caller that smooths every step so that
 // a step reuses their memory instead of allocating (and page-faulting) it anew, and the
 // curvature frames of vertices that barely moved (SmoothingOptions::reuse_frames). Listen to
-// the mesh's splits (a new vertex may carry a freed id); forget_frames() when the mesh is
-// replaced.
+// the mesh's splits (a new vertex may carry a freed id) and renumberings; forget_frames()
+// when the mesh is replaced.
 class SmoothingWorkspace final : public MeshListener {
  public:
   SmoothingWorkspace();
@@ -64,6 +64,9 @@ class SmoothingWorkspace final : public MeshListener {
   bool landed(Vertex v, double& value, Vec3& gradient) const;
   void after_split(Mesh48& mesh, const DiamondChange& change) override;
   void after_weld(Mesh48&, const DiamondChange&) override {}
+  // The kept frames (and where the last call moved each vertex) move to the new ids; the
+  // other buffers are rebuilt by every call.
+  void after_renumber(Mesh48& mesh, const Renumbering& renumbering) override;
   SmoothingWorkspace(const SmoothingWorkspace&) = delete;
   SmoothingWorkspace& operator=(const SmoothingWorkspace&) = delete;
   struct Buffers;

@@ -9,7 +9,7 @@ const char* StatsCsvWriter::header() {
          "survivor_displacement_mean,survivor_displacement_max,smoothing_moved,smoothing_reverted,"
          "splits_refused,pathological_welds,substeps,motion_strain,folds_found,slivers_found,"
          "repair_moves,folds_left,slivers_left,faces_measured,topology_events,rebuilt,seconds_"
-         "topology";
+         "topology,renumbered,seconds_renumber";
 }
 
 StatsCsvWriter::StatsCsvWriter(const std::string& path) : file_(path) {
@@ -29,8 +29,8 @@ void StatsCsvWriter::write(const StepStats& s, std::size_t total_splits, std::si
       << ',' << s.splits_refused << ',' << s.pathological_welds << ',' << s.substeps << ','
       << s.motion_strain << ',' << s.folds_found << ',' << s.slivers_found << ',' << s.repair_moves
       << ',' << s.folds_left << ',' << s.slivers_left << ',' << s.faces_measured << ','
-      << s.topology_events.size() << ',' << (s.rebuilt ? 1 : 0) << ',' << s.topology_seconds
-      << '\n';
+      << s.topology_events.size() << ',' << (s.rebuilt ? 1 : 0) << ',' << s.topology_seconds << ','
+      << (s.renumbered ? 1 : 0) << ',' << s.seconds.renumber << '\n';
 }
 
 void StatsCsvWriter::close() {

@@ -2,15 +2,16 @@
 // and vertex weld (Velho's 4-8 meshes; de Goes et al. 2006, Section 3.2).
 //
 // Storage is index based with free lists, so a vertex or face id is stable while the element
-// lives and no operation allocates once capacity is reached. Every face stores its vertices
+// lives (until renumber(), which tells the listeners) and no operation allocates once
+// capacity is reached. Every face stores its vertices
 // counter-clockwise with its *newest* vertex first: local edge 0 (from vertex 1 to vertex 2)
 // is its refinement edge. Each face knows the twin halfedge across each of its edges and its
 // depth (number of bisections since the base mesh); each split-born vertex knows its parent
 // edge and level.
 //
-// Per-element data kept outside the mesh (samples, colours, ...) follows splits and welds
-// through MeshListener: one callback per operation, carrying which face slots were bisected
-// or merged, and how.
+// Per-element data kept outside the mesh (samples, colours, ...) follows splits, welds and
+// renumberings through MeshListener: one callback per operation, carrying which face slots
+// were bisected or merged, and how, or every slot's new id.
 #pragma once
 
 #include <array>
@@ -20,6 +21,7 @@
 
 #include "core/geometry/vector_types.h"
 #include "core/mesh/handles.h"
+#include "core/mesh/renumbering.h"
 
 namespace dynamesh {
 
@@ -51,11 +53,15 @@ class Mesh48;
 // (the vertex is placed at the midpoint of its parents; a listener may move it).
 // after_weld is called once the merged faces exist; the removed vertex's and freed faces'
 // slots are dead but their ids are still those in the record.
+// after_renumber is called once the mesh uses the new ids: everything a listener keeps per
+// vertex or face slot must move to them (renumber_elements); there is no default, so that
+// no listener can forget.
 class MeshListener {
  public:
   virtual ~MeshListener() = default;
   virtual void after_split(Mesh48& mesh, const DiamondChange& change) = 0;
   virtual void after_weld(Mesh48& mesh, const DiamondChange& change) = 0;
+  virtual void after_renumber(Mesh48& mesh, const Renumbering& renumbering) = 0;
 };
 
 // A vertex's place in one face: face.vertex(local) == that vertex.
@@ -177,6 +183,13 @@ class Mesh48 {
                                      const std::vector<Vec3>& positions,
                                      const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                      const std::vector<int>& depths = {});
+
+  // --- renumbering ---------------------------------------------------------------------
+  // Gives every live vertex and face the id `renumbering` assigns it (a bijection onto
+  // 0..n-1: spatial_order.h makes one), compacting the free slots away, and tells the
+  // listeners. Geometry, connectivity, depths and lineage are unchanged, only their ids.
+  // Throws std::invalid_argument (the mesh unchanged) when it is not such a bijection.
+  void renumber(const Renumbering& renumbering);
 
   // --- listeners -------------------------------------------------------------------------
   void add_listener(MeshListener* listener);

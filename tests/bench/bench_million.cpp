@@ -5,11 +5,13 @@
 // what a shared machine's other load does not inflate) and each phase's median; the share of
 // faces measured, and the share with a vertex that moved more than a quarter of the face's
 // shortest edge this step (ErrorPredictor::kMaxMoveFraction: those are measured whatever
-// their bound says).
+// their bound says); the steps that renumbered the mesh (AdaptOptions::renumber), the median
+// renumbering time, and the share of scattered faces left (spatial_order.h).
 // BM_MillionFacePass: why the per-face passes cost what they do at this size. One pass over
 // the adapted mesh's faces as the step's passes are built (read the three corners, a cross
 // product, add it into the three corners' sums: compute_ring_centroids, find_bad_faces),
-// timed in the mesh's own numbering and in the same mesh renumbered along a Morton curve.
+// timed in the mesh's own numbering (as the adapter keeps it), in the same mesh renumbered
+// afresh along the Morton curve, and in random order (a numbering without locality).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -17,9 +19,11 @@
 #include <chrono>
 #include <cstdint>
 #include <numeric>
+#include <random>
 #include <vector>
 
 #include "core/adapt/adapter.h"
+#include "core/mesh/spatial_order.h"
 #include "core/surface/scene_registry.h"
 #include "process_cpu_time.h"
 
@@ -71,7 +75,8 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   MillionScene scene(threshold);
   Adapter& adapter = *scene.adapter;
   std::vector<double> wall, cpu, project, smooth, sample, weld, split;
-  double measured = 0, faces = 0, moved = 0;
+  double measured = 0, faces = 0, moved = 0, renumbered = 0;
+  std::vector<double> renumber;
   for (auto _ : state) {
     const std::vector<Vec3> before = adapter.mesh().positions();
     const double cpu0 = process_cpu_seconds();
@@ -84,6 +89,8 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
     sample.push_back(st.seconds.sample);
     weld.push_back(st.seconds.weld);
     split.push_back(st.seconds.split);
+    renumber.push_back(st.seconds.renumber);
+    renumbered += st.renumbered;
     measured += static_cast<double>(st.faces_measured);
     faces += static_cast<double>(st.triangles);
     moved += moved_share(adapter.mesh(), before) * static_cast<double>(st.triangles);
@@ -96,6 +103,9 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   state.counters["sample_ms"] = 1e3 * median(sample);
   state.counters["weld_ms"] = 1e3 * median(weld);
   state.counters["split_ms"] = 1e3 * median(split);
+  state.counters["renumber_ms"] = 1e3 * median(renumber);
+  state.counters["renumbered_steps"] = renumbered;
+  state.counters["scattered_share"] = scattered_face_share(adapter.mesh());
   state.counters["measured_share"] = measured / faces;
   state.counters["moved_share"] = moved / faces;
 }
@@ -103,17 +113,6 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
 BENCHMARK_CAPTURE(BM_MillionTriangleStep, capsule_T9e - 6, 9e-6)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
-
-// Interleaves the bits of a 21-bit integer with two zero bits each (Morton code, one axis).
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
 
 using Triangles = std::vector<std::array<std::uint32_t, 3>>;
 
@@ -135,34 +134,29 @@ void BM_MillionFacePass(benchmark::State& state, double threshold) {
     own.push_back({v[0].idx, v[1].idx, v[2].idx});
   }
   const std::vector<Vec3>& p = mesh.positions();
-  // Morton order: vertices by their position's code in the bounding box, faces by their
-  // lowest-numbered corner.
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (const Vertex v : mesh.live_vertices()) {
-    lo = lo.cwiseMin(p[v.idx]);
-    hi = hi.cwiseMax(p[v.idx]);
+  // The same mesh renumbered afresh along the Morton curve (spatial_order.h).
+  const Renumbering r = spatial_renumbering(mesh);
+  std::vector<Vec3> morton_p(p);
+  renumber_elements(morton_p, r.vertex, r.n_vertices);
+  Triangles morton(r.n_faces);
+  for (const Face f : mesh.live_faces()) {
+    const auto v = mesh.vertices(f);
+    morton[r.face[f.idx]] = {r.vertex[v[0].idx], r.vertex[v[1].idx], r.vertex[v[2].idx]};
   }
-  std::vector<std::uint64_t> code(p.size(), 0);
-  for (const Vertex v : mesh.live_vertices())
-    for (int a = 0; a < 3; ++a)
-      code[v.idx] |= spread_bits(static_cast<std::uint64_t>((p[v.idx][a] - lo[a]) /
-                                                            (hi[a] - lo[a] + 1e-300) * 2097151.0))
-                     << a;
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return code[a] < code[b]; });
-  std::vector<std::uint32_t> renamed(p.size());
-  for (std::size_t i = 0; i < order.size(); ++i) renamed[order[i]] = static_cast<std::uint32_t>(i);
-  std::vector<Vec3> morton_p(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) morton_p[renamed[i]] = p[i];
-  Triangles morton = own;
-  for (auto& f : morton)
-    for (auto& v : f) v = renamed[v];
-  std::sort(morton.begin(), morton.end(), [](const auto& a, const auto& b) {
-    return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
-  });
+  // And in random order: what a numbering without locality costs (the split order was
+  // close to it: corners 270,000 ids apart on average at 10^6 triangles).
+  std::mt19937 rng(1);
+  std::vector<std::uint32_t> shuffle(p.size());
+  std::iota(shuffle.begin(), shuffle.end(), 0u);
+  std::shuffle(shuffle.begin(), shuffle.end(), rng);
+  std::vector<Vec3> random_p(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) random_p[shuffle[i]] = p[i];
+  Triangles random = own;
+  for (auto& f : random)
+    for (auto& v : f) v = shuffle[v];
+  std::shuffle(random.begin(), random.end(), rng);
   std::vector<Vec3> sum(p.size());
-  std::vector<double> own_s, morton_s;
+  std::vector<double> own_s, morton_s, random_s;
   for (auto _ : state) {
     auto t0 = std::chrono::steady_clock::now();
     face_pass(own, p, sum);
@@ -173,6 +167,11 @@ void BM_MillionFacePass(benchmark::State& state, double threshold) {
     morton_s.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     benchmark::DoNotOptimize(sum.data());
+    t0 = std::chrono::steady_clock::now();
+    face_pass(random, random_p, sum);
+    random_s.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(sum.data());
   }
   double spread = 0.0;
   for (const auto& f : own)
@@ -180,6 +179,13 @@ void BM_MillionFacePass(benchmark::State& state, double threshold) {
   state.counters["triangles"] = static_cast<double>(own.size());
   state.counters["own_numbering_ms"] = 1e3 * median(own_s);
   state.counters["morton_ms"] = 1e3 * median(morton_s);
+  state.counters["random_order_ms"] = 1e3 * median(random_s);
+  // What one renumbering of the adapter costs at this size (the order, the mesh, and every
+  // listener's data: the sample pool is rewritten in the new face order), process CPU time.
+  const double cpu0 = process_cpu_seconds();
+  scene.adapter->renumber(spatial_renumbering(mesh));
+  state.counters["renumber_cpu_ms"] = 1e3 * (process_cpu_seconds() - cpu0);
+  state.counters["scattered_share"] = scattered_face_share(mesh);
   state.counters["corner_id_spread"] = spread / static_cast<double>(own.size());
 }
 

@@ -108,9 +108,9 @@ TEST(Cli, HelpTeaches) {
   EXPECT_NE(main_help.out.find("dynamesh-cli run"), std::string::npos);
   const Result run_help = run_cli("run --help");
   EXPECT_EQ(run_help.status, 0);
-  for (const char* option : {"--scene", "--param", "--threshold", "--epsilon", "--density",
-                             "--steps", "--stats", "--export-final", "--render", "--k",
-                             "--sampling"})
+  for (const char* option :
+       {"--scene", "--param", "--threshold", "--epsilon", "--density", "--steps", "--stats",
+        "--export-final", "--render", "--k", "--sampling", "--renumber"})
     EXPECT_NE(run_help.out.find(option), std::string::npos) << option;
   const Result scenes = run_cli("scenes");
   EXPECT_EQ(scenes.status, 0);
@@ -197,9 +197,9 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
   const fs::path dir = scratch();
   auto measured_share = [&](const std::string& mode) {
     const fs::path csv = dir / (mode + ".csv");
-    const Result r = run_cli("run --scene twist --threshold 0.004 --t0 0.3 --t1 0.34 --steps 8 " +
-                             (mode.empty() ? "" : "--sampling " + mode) + " --quiet --stats " +
-                             csv.string());
+    const Result r =
+        run_cli("run --scene twist --threshold 0.004 --t0 0.3 --t1 0.34 --steps 8 " +
+                (mode.empty() ? "" : "--sampling " + mode) + " --quiet --stats " + csv.string());
     EXPECT_EQ(r.status, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
     EXPECT_LE(json["max_sample_error"].get<double>(), 0.005 + 1e-12) << mode;  // T + eps
@@ -226,6 +226,75 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
   const double predictive = measured_share("predictive");
   EXPECT_LT(predictive, 0.5);
   EXPECT_EQ(measured_share(""), predictive);  // the default
+  fs::remove_all(dir);
+}
+
+// --renumber: on renumbers the mesh along a Morton curve whenever its numbering has
+// scattered (the CSV's `renumbered`), off never. The renumbering happens at the end of a
+// step, after everything but the step's statistics: up to the first renumbered step both runs
+// are the same computation, so that step's survival statistics (vertices kept, their
+// displacement since the step's start), which the on run counts through the renumbering,
+// must be the off run's exactly (the mean up to the order of its sum). Afterwards the runs
+// differ by rounding only (sums over a vertex's faces in another order). And whatever the
+// numbering, a step that welded nothing keeps every vertex it started with.
+TEST(Cli, RenumberOptionKeepsSurvivalCounted) {
+  const fs::path dir = scratch();
+  using Rows = std::vector<std::vector<std::string>>;
+  std::vector<std::string> names;
+  auto run = [&](const std::string& mode) {
+    const fs::path csv = dir / ("renumber_" + mode + ".csv");
+    // The growing sphere: thousands of splits per step scatter the numbering quickly.
+    const Result r = run_cli("run --scene sphere --threshold 0.002 --steps 10 --renumber " + mode +
+                             " --quiet --stats " + csv.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    names = split(line, ',');
+    Rows rows;
+    while (std::getline(in, line)) rows.push_back(split(line, ','));
+    return rows;
+  };
+  const auto column = [&](const char* name) {
+    const auto i = std::find(names.begin(), names.end(), name) - names.begin();
+    EXPECT_LT(static_cast<std::size_t>(i), names.size()) << name;
+    return static_cast<std::size_t>(i);
+  };
+  const Rows on = run("on"), off = run("off");
+  ASSERT_EQ(on.size(), 11u);
+  ASSERT_EQ(off.size(), 11u);
+  const auto number = [&](const Rows& rows, std::size_t k, const char* name) {
+    return std::stod(rows[k].at(column(name)));
+  };
+  std::size_t first = 0;  // the first renumbered step
+  int renumbered = 0;
+  for (std::size_t k = 0; k < on.size(); ++k) {
+    EXPECT_EQ(number(off, k, "renumbered"), 0) << k;
+    renumbered += number(on, k, "renumbered") == 1;
+    if (first == 0 && number(on, k, "renumbered") == 1) first = k;
+    if (k > 0 && number(on, k, "welds") == 0) {
+      EXPECT_EQ(number(on, k, "vertices_kept"), number(on, k - 1, "vertices")) << k;
+    }
+  }
+  ASSERT_GE(first, 1u);
+  EXPECT_GE(renumbered, 2);
+  for (std::size_t k = 1; k <= first; ++k) {
+    for (const char* exact : {"triangles", "vertices", "splits", "welds", "vertices_kept",
+                              "kept_fraction", "survivor_displacement_max", "max_error"})
+      EXPECT_EQ(on[k].at(column(exact)), off[k].at(column(exact))) << exact << ", step " << k;
+    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
+                number(off, k, "survivor_displacement_mean"),
+                1e-9 * number(off, k, "survivor_displacement_mean"))
+        << k;
+  }
+  for (std::size_t k = first + 1; k < on.size(); ++k) {
+    EXPECT_NEAR(number(on, k, "triangles"), number(off, k, "triangles"),
+                0.02 * number(off, k, "triangles"));
+    EXPECT_NEAR(number(on, k, "kept_fraction"), number(off, k, "kept_fraction"), 0.02);
+    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
+                number(off, k, "survivor_displacement_mean"),
+                0.02 * number(off, k, "survivor_displacement_mean"));
+  }
   fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 #include "core/mesh/bisection_map.h"
 #include "core/mesh/mesh48.h"
 #include "mesh_measure.h"
+#include "tests/support/random_renumbering.h"
 
 namespace dynamesh {
 namespace {
@@ -281,6 +282,9 @@ class PointCarrier : public MeshListener {
             h = change.count;
           }
   }
+  void after_renumber(Mesh48&, const Renumbering& r) override {
+    for (Point& p : points) p.face = Face(r.face[p.face.idx]);
+  }
 };
 
 Vec3 position_of(const Mesh48& mesh, const PointCarrier::Point& p) {
@@ -313,6 +317,8 @@ TEST(Mesh48, ListenerRecordsCarryPointsExactly) {
       const Vertex v(static_cast<std::uint32_t>(rng() % mesh.vertex_capacity()));
       if (mesh.is_alive(v)) mesh.weld(v);
     }
+    // Renumberings move every face: the points follow through after_renumber.
+    if (op % 5000 == 4999) mesh.renumber(random_renumbering(mesh, rng));
   }
   for (std::size_t i = 0; i < carrier.points.size(); ++i) {
     const auto& p = carrier.points[i];
