@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -93,6 +95,23 @@ int run_frames(MotionRun& run, const std::vector<double>& times, int steps_per_s
       if (::testing::Test::HasFailure()) return substeps;
     }
   return substeps;
+}
+
+// Judges the frames a CLI run exported to `frames` (frame_00000.ply .. frame_<last>.ply) as they
+// lie on disk: each an embedded closed manifold with no angle below `min_angle_deg`. Returns the
+// smallest angle seen.
+double expect_exported_frames_ok(const std::filesystem::path& frames, int last,
+                                 double min_angle_deg) {
+  double smallest = 180.0;
+  for (int step = 0; step <= last; ++step) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.ply", step);
+    const test::MeshValidity v = test::check_mesh_validity_of_file((frames / name).string());
+    EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
+    EXPECT_GE(v.min_angle_deg, min_angle_deg) << name << ": " << v.describe();
+    smallest = std::min(smallest, v.min_angle_deg);
+  }
+  return smallest;
 }
 
 void expect_returns(const std::vector<double>& r, const std::string& scene) {
@@ -183,14 +202,7 @@ TEST(MotionFrames, MriDownAndBackUpThreeTimes) {
       test::run_cli({"--scene", "mri", "--param", "depth_max=10", "--keyframes", "0,1,0,1,0,1,0",
                      "--steps", "10", "--export", (dir / "frames").string(), "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  for (int step = 0; step <= 60; ++step) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05d.ply", step);
-    const test::MeshValidity v =
-        test::check_mesh_validity_of_file((dir / "frames" / name).string());
-    EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
-    EXPECT_GE(v.min_angle_deg, 5.0) << name << ": " << v.describe();
-  }
+  expect_exported_frames_ok(dir / "frames", 60, 5.0);
   const std::vector<double> returns = keyframe_returns(r);
   expect_returns(returns, "mri");
   RecordProperty("mri_returns", std::to_string(returns[0]) + " " + std::to_string(returns[1]) +
@@ -210,16 +222,7 @@ TEST(MotionFrames, MriDownTwentyMillimetresAndBack) {
       test::run_cli({"--scene", "mri", "--param", "depth_max=20", "--keyframes", "0,1,0", "--steps",
                      "20", "--export", (dir / "frames").string(), "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  double smallest = 180.0;
-  for (int step = 0; step <= 40; ++step) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05d.ply", step);
-    const test::MeshValidity v =
-        test::check_mesh_validity_of_file((dir / "frames" / name).string());
-    EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
-    EXPECT_GE(v.min_angle_deg, 5.0) << name << ": " << v.describe();
-    smallest = std::min(smallest, v.min_angle_deg);
-  }
+  const double smallest = expect_exported_frames_ok(dir / "frames", 40, 5.0);
   RecordProperty("smallest_angle_deg", std::to_string(smallest));
   std::filesystem::remove_all(dir);
 }
@@ -240,14 +243,7 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
       (dir / "stats.csv").string() + " --export " + (dir / "frames").string() +
       " --export-every 1 --quiet > " + (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  for (int step = 0; step <= 5; ++step) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05d.ply", step);
-    const test::MeshValidity v =
-        test::check_mesh_validity_of_file((dir / "frames" / name).string());
-    EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
-    EXPECT_GE(v.min_angle_deg, 10.0) << name << ": " << v.describe();
-  }
+  expect_exported_frames_ok(dir / "frames", 5, 10.0);
   std::ifstream csv(dir / "stats.csv");
   std::string header, line;
   std::getline(csv, header);
