@@ -140,13 +140,15 @@ void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_
 void SampleStore::reset(const Mesh48& mesh) {
   samples_.clear();
   garbage_ = 0;
-  face_start_.assign(mesh.face_capacity(), 0);
-  face_count_.assign(mesh.face_capacity(), 0);
-  face_error_.assign(mesh.face_capacity(), 0.0);
-  face_dense_.assign(mesh.face_capacity(), 0);
-  measured_.assign(mesh.face_capacity(), 0);
-  model_error_.assign(mesh.face_capacity(), 0.0);
-  peak_error_.assign(mesh.face_capacity(), -1.0);
+  // Every per-face array anew, with the defaults grow_faces gives a new slot.
+  face_start_.clear();
+  face_count_.clear();
+  face_error_.clear();
+  face_dense_.clear();
+  measured_.clear();
+  model_error_.clear();
+  peak_error_.clear();
+  grow_faces(mesh.face_capacity());
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
