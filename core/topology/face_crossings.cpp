@@ -31,6 +31,18 @@ bool segment_crosses(const Vec3& p, const Vec3& q, const Corners& t) {
   return at > 0 && at < 1;
 }
 
+struct Box {
+  Vec3 lo, hi;
+};
+
+Box box_of(const Corners& c) {
+  return {c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])};
+}
+
+bool disjoint(const Box& a, const Box& b) {
+  return (a.lo.array() > b.hi.array()).any() || (a.hi.array() < b.lo.array()).any();
+}
+
 bool triangles_cross(const Corners& a, const Corners& b) {
   for (int i = 0; i < 3; ++i) {
     if (segment_crosses(a[i], a[(i + 1) % 3], b)) return true;
@@ -45,22 +57,21 @@ std::size_t count_face_crossings(const Mesh48& mesh, const std::vector<Face>& fa
                                  std::size_t enough) {
   std::vector<Corners> all;
   std::vector<std::array<std::uint32_t, 3>> ids;
-  std::vector<Vec3> lo, hi;
+  std::vector<Box> boxes;
   for (const Face g : mesh.live_faces()) {
     const Corners c = corners_of(mesh, g);
     const auto v = mesh.vertices(g);
     all.push_back(c);
     ids.push_back({v[0].idx, v[1].idx, v[2].idx});
-    lo.push_back(c[0].cwiseMin(c[1]).cwiseMin(c[2]));
-    hi.push_back(c[0].cwiseMax(c[1]).cwiseMax(c[2]));
+    boxes.push_back(box_of(c));
   }
   std::size_t count = 0;
   for (const Face f : faces) {
     const Corners a = corners_of(mesh, f);
     const auto v = mesh.vertices(f);
-    const Vec3 flo = a[0].cwiseMin(a[1]).cwiseMin(a[2]), fhi = a[0].cwiseMax(a[1]).cwiseMax(a[2]);
+    const Box box = box_of(a);
     for (std::size_t k = 0; k < all.size(); ++k) {
-      if ((lo[k].array() > fhi.array()).any() || (hi[k].array() < flo.array()).any()) continue;
+      if (disjoint(boxes[k], box)) continue;
       bool shares = false;
       for (const Vertex x : v)
         shares = shares || std::find(ids[k].begin(), ids[k].end(), x.idx) != ids[k].end();
