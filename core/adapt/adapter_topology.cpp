@@ -14,6 +14,22 @@
 #include "core/topology/topology_events.h"
 
 namespace dynamesh {
+namespace {
+
+// The cut reaches two cells of the watching grid around the critical point (the mesh is wrong
+// within about one: the event happened since the last step), the patch is contoured at the
+// seam's edge size, between half a cell and three quarters of one (local_repair.h; a whole
+// cell left the narrow blobs' new neck faces so large that their sparse samples missed the
+// error next to it: dense error 1.11 (T + eps) in the step after the merge).
+LocalRepairOptions local_repair_options(double cell) {
+  LocalRepairOptions o;
+  o.radius = 2.0 * cell;
+  o.spacing = 0.5 * cell;
+  o.max_spacing = 0.75 * cell;
+  return o;
+}
+
+}  // namespace
 
 void Adapter::watch_topology() {
   topology_.reset();
@@ -54,15 +70,7 @@ void Adapter::check_topology() {
 bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
-  // The cut reaches two cells of the watching grid around the critical point (the mesh is
-  // wrong within about one: the event happened since the last step), the patch is contoured
-  // at the seam's edge size, between half a cell and three quarters of one (local_repair.h;
-  // a whole cell left the narrow blobs' new neck faces so large that their sparse samples
-  // missed the error next to it: dense error 1.11 (T + eps) in the step after the merge).
-  LocalRepairOptions o;
-  o.radius = 2.0 * topology_->spacing();
-  o.spacing = 0.5 * topology_->spacing();
-  o.max_spacing = 0.75 * topology_->spacing();
+  const LocalRepairOptions o = local_repair_options(topology_->spacing());
   std::size_t repaired = 0;
   for (const TopologyEvent& e : check.events) {
     if (e.kind == TopologyEventKind::kMismatch) {
@@ -191,10 +199,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   for (const Face f : folded)
     for (const Vertex v : mesh_.vertices(f)) centre += mesh_.position(v), ++corners;
   centre /= static_cast<double>(corners);
-  LocalRepairOptions o;  // as repair_topology_locally's
-  o.radius = 2.0 * topology_->spacing();
-  o.spacing = 0.5 * topology_->spacing();
-  o.max_spacing = 0.75 * topology_->spacing();
+  const LocalRepairOptions o = local_repair_options(topology_->spacing());
   for (const Face f : folded)  // one patch: the folds together, within half the cut
     for (const Vertex v : mesh_.vertices(f))
       if ((mesh_.position(v) - centre).norm() > 0.5 * o.radius) return false;
@@ -242,10 +247,6 @@ void Adapter::rebuild_if_folded() {
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-}  // namespace dynamesh
-
-namespace dynamesh {
 
 void Adapter::rebuild_if_crossed() {
   // A locally repaired region is judged once more when the step ends: the sub-steps after the
