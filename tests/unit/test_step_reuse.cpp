@@ -243,6 +243,17 @@ TEST(FoldScreenBuffersKept, SameVerdictsAsFreshScratch) {
   find_bad_faces(large, s, 10.0, folded, slivers);
   EXPECT_EQ(folded_kept, folded);
   EXPECT_EQ(slivers_kept, slivers);
+  // The screen around vertices, with the same scratch right after the mirrored mesh's (whose
+  // corner sums and marks must not leak into the next call) and every vertex listed twice:
+  // the full screen's verdicts on the damaged mesh, each face once.
+  std::vector<Vertex> twice = damaged.live_vertices();
+  const std::vector<Vertex> once = twice;
+  twice.insert(twice.end(), once.rbegin(), once.rend());
+  find_bad_faces_around(mirrored, s, 10.0, twice, folded_kept, slivers_kept, &kept);
+  find_bad_faces_around(damaged, s, 10.0, twice, folded_kept, slivers_kept, &kept);
+  find_bad_faces(damaged, s, 10.0, folded, slivers);
+  EXPECT_EQ(folded_kept, folded);
+  EXPECT_EQ(slivers_kept, slivers);
 }
 
 TEST(FoldScreenAround, AdapterStepsMatchTheFullScreen) {
