@@ -287,6 +287,7 @@ const StepStats& Adapter::step(double t) {
 }
 
 int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
+  small_motion_ = false;
   if (!options_.geometric || !options_.substeps.enabled || from == to) return 1;
   const bool carry = probe_.follows_material();
   if (carry) record_rest_points();
@@ -302,6 +303,7 @@ int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
   starts_planned_ = implicit && e.substeps == 1 && !topology_;
   stats_.substeps = e.substeps;
   stats_.motion_strain = e.strain;
+  small_motion_ = e.substeps == 1 && e.strain <= options_.fold_repair.prescreen_above_strain;
   return e.substeps;
 }
 
@@ -316,12 +318,14 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   if (correct) normal_correction();
   seconds.project += clock.lap();
   if (correct) tangential_correction();
-  if (correct) repair(options_.fold_repair);
+  // A small motion in one go is screened once, before publishing (prescreen_above_strain).
+  const bool screen = correct && !(small_motion_ && !topology_);
+  if (screen) repair(options_.fold_repair);
   if (correct && topology_) rebuild_if_folded();
   // From a clean screen on, only splits and welds change the mesh before the frame is
   // published (no vertex moves): publish_repaired() looks again only where they did.
   tracker_->rings_changed.clear();
-  tracker_->recording_ring_changes = correct && !topology_ && options_.fold_repair.enabled &&
+  tracker_->recording_ring_changes = screen && !topology_ && options_.fold_repair.enabled &&
                                      stats_.folds_left == 0 && stats_.slivers_left == 0;
   seconds.smooth += clock.lap();
   sampling();

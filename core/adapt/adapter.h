@@ -92,6 +92,9 @@ class Adapter {
   // After plan_substeps() chose one sub-step: its evaluations at the step's end time are the
   // normal correction's first Newton iterates (projection_starts_).
   bool starts_planned_ = false;
+  // plan_substeps() found the step small enough to skip the screen after correction
+  // (FoldRepairOptions::prescreen_above_strain).
+  bool small_motion_ = false;
   void repair(const FoldRepairOptions& options);
   // Checks the frame about to be published for folds and slivers; repairs and re-measures.
   void publish_repaired();
@@ -188,8 +191,8 @@ class Adapter {
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
-  std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
-  FoldScreenBuffers fold_screen_;  // the fold screen's scratch, kept (fold_repair.h)
+  std::vector<Face> bad_faces_[2];    // folded faces and slivers (publish_repaired)
+  FoldScreenBuffers fold_screen_;     // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 

@@ -31,6 +31,14 @@ struct FoldRepairOptions {
   // the faces around vertices whose one-ring a split or weld changed since this step's
   // correction found no bad face (find_bad_faces_around: the same verdicts); false: all faces.
   bool screen_changed_only = true;
+  // A step taken in one go whose predicted edge strain (motion_substeps.h) is at most this
+  // skips the screen (and repair) right after its correction: the frame's screen before
+  // publishing then judges every face, and repairs, re-measures and refines as after any
+  // screen, so every published frame is judged as before. Twist at 100 steps has strains of
+  // 0.09-0.12 and no bad face before publishing: one full screen per step instead of two.
+  // Stronger steps (sub-stepped ones have 0.125-0.25 per sub-step) are screened and repaired
+  // before their samples, welds and splits. 0: always screen after correction.
+  double prescreen_above_strain = 0.125;
 };
 
 struct FoldReport {
