@@ -184,12 +184,17 @@ class Adapter {
   // Rest-space points of the vertices before the surface's time changed (surfaces with a
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
+  // Where each vertex's material point went this step, before the projection and smoothing
+  // moved it on (predictive sampling on a surface with a rest map: ErrorPredictor's slide);
+  // valid when carried_valid_.
+  std::vector<Vec3> carried_;
+  bool carried_valid_ = false;
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
-  std::vector<Face> bad_faces_[2];                  // folded faces and slivers (publish_repaired)
-  FoldScreenBuffers fold_screen_;  // the fold screen's scratch, kept (fold_repair.h)
+  std::vector<Face> bad_faces_[2];    // folded faces and slivers (publish_repaired)
+  FoldScreenBuffers fold_screen_;     // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;
 };
 
