@@ -26,7 +26,12 @@ constexpr double kSafety = 5.0;
 // see this where the face stretches across a curvature jump (a C1 seam: the capsule's
 // cylinder meeting its caps, bent by capsule-bend): without this term, skipped faces on the
 // seams' inner side used 0.99 of their bound there (1.29 with kMaxTravelFraction 0.1),
-// with it 0.25 (PredictiveAnimation/capsule_bend, T = 0.002).
+// with it 0.25 (PredictiveAnimation/capsule_bend, T = 0.002). Added only in steps whose
+// vertices were carried with the material (a rest map): there the seam stays under the same
+// faces and the slide guard does not see the face stretching across it. Without a rest map
+// a seam moves relative to the corners, which the slide guard (the whole move) measures, as
+// before session 9; applied there too, the term measured the twist's sheared sides needlessly
+// (21% -> 28% of its faces, Cli.SamplingOptionChoosesWhatIsMeasured above 0.5).
 constexpr double kStrainGain = 2.0;
 
 // Over the triangle, max of b_i b_j |b_j - b_i| on one edge's term (at 2 t - 1 = 1 / sqrt 3),
@@ -134,6 +139,7 @@ void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
     slid_[k] = material_positions ? distance(*material_positions) : moved_[k];
   }
   reused_evaluations_ = probe.parametric() ? 0 : reused;
+  carried_ = material_positions != nullptr;
 }
 
 ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
@@ -201,6 +207,9 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   flags_.assign(static_cast<std::size_t>(n), 0);
   const std::uint64_t phase = step_ % kRotation;
+  // The strain term covers faces carried with the material across a seam; a face that moved
+  // over the surface instead is covered by the slide guard (the whole move counts as slide).
+  const double strain_gain = carried_ ? kStrainGain : 0.0;
   double curvature = 0.0;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(max : curvature) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -238,7 +247,7 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       const double residual =
           kSafety * (std::min(quadratic.largest / 3.0, quadratic.sum / 4.0) +
                      std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) + offset +
-                     kStrainGain * stretch * samples.face_error(f));
+                     strain_gain * stretch * samples.face_error(f));
       // The reading follows the residual at the samples and, near the split bound, on the
       // edges (SampleStore::set_peak_search).
       bound_[k] = residual * samples.reading_gain(f, residual);

@@ -61,15 +61,16 @@
 //     corners' data need see what happens inside the face. Two things change the residual
 //     there. (a) The face stretching across the seam: a face whose edges changed by a factor
 //     within 1 +- s since its reference reads up to (1 + s)^2 of its error on the same
-//     curvatures, so 2 s times its last error is added to the bound (kStrainGain,
-//     error_predictor.cpp). Without it, capsule-bend's skipped faces on the inner side of its
-//     seams used 0.99 of their bound (PredictiveAnimation, T = 0.002), with it 0.25. (b) A
-//     seam sliding across the face changes its residual by ~ (slide / h) of its size: a face
-//     with a corner that slid over the surface by more than kMaxSlideFraction of its shortest
-//     edge this step is measured (as before session 9, but on the slide, not the move). The
-//     slide is the move relative to the surface's material where the surface has a rest map
-//     (capsule-bend: the vertices are carried with it, and only the correction and the
-//     smoothing slide them; the seam stays under the same faces), else the whole move.
+//     curvatures, so 2 s times its last error is added to the bound where the vertices were
+//     carried with the material this step (kStrainGain, error_predictor.cpp). Without it,
+//     capsule-bend's skipped faces on the inner side of its seams used 0.99 of their bound
+//     (PredictiveAnimation, T = 0.002), with it 0.25. (b) A seam sliding across the face changes
+//     its residual by ~ (slide / h) of its size: a face with a corner that slid over the surface by
+//     more than kMaxSlideFraction of its shortest edge this step is measured (as before session 9,
+//     but on the slide, not the move). The slide is the move relative to the surface's material
+//     where the surface has a rest map (capsule-bend: the vertices are carried with it, and only
+//     the correction and the smoothing slide them; the seam stays under the same faces), else the
+//     whole move.
 //   - Stochastic sampling and drift beyond all of the above: a rotating 1/kRotation of all
 //     faces is measured every step, so no face goes unmeasured for more than kRotation steps.
 // Faces whose samples changed (split, weld, new pattern: SampleStore::measured() false) are
@@ -200,6 +201,7 @@ class ErrorPredictor final : public MeshListener {
   std::vector<std::uint8_t> flags_;  // select's scratch
   std::size_t skipped_ = 0, guarded_ = 0;
   double curvature_radius_ = std::numeric_limits<double>::infinity();
+  bool carried_ = false;  // begin_step had the material positions (the strain term applies)
   // Each of the last kRotation steps' smallest radius (by step % kRotation).
   std::array<double, kRotation> radius_ = filled_radii();
   static std::array<double, kRotation> filled_radii() {
