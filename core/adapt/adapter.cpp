@@ -97,6 +97,7 @@ class Adapter::Tracker final : public MeshListener {
     renumber_handles(rings_changed, r.vertex);
     Adapter& a = adapter_;
     // Vertices born since these were recorded have no entry: NaN, never a position.
+    a.carried_valid_ = false;
     for (std::vector<Vec3>* points : {&a.start_positions_, &a.rest_points_, &a.displacement_}) {
       points->resize(r.vertex.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
       renumber_elements(*points, r.vertex, r.n_vertices);
@@ -453,6 +454,9 @@ void Adapter::normal_correction() {
       probe_.parametric() ? nullptr : &static_cast<const ImplicitSurface&>(surface_);
   const bool keep = implicit && options_.sampling == Sampling::kPredictive;
   if (keep) predictor_.grow_for(mesh_);
+  // One sub-step only: the slide is measured over the whole step (ErrorPredictor::begin_step).
+  carried_valid_ = keep && carry && stats_.substeps <= 1;
+  if (carried_valid_) carried_.resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
@@ -460,6 +464,7 @@ void Adapter::normal_correction() {
     const auto k = static_cast<std::size_t>(i);
     if (keep) {
       if (carry && !planned) probe_.carry_vertex(mesh_, v, rest_points_[k]);
+      if (carried_valid_) carried_[k] = planned ? projection_starts_[k].point : mesh_.position(v);
       const ProjectionResult r = planned ? project_to_surface(*implicit, projection_starts_[k])
                                          : project_to_surface(*implicit, mesh_.position(v));
       mesh_.position(v) = r.point;
@@ -514,7 +519,9 @@ void Adapter::sampling() {
     stats_.faces_measured += mesh_.n_faces();
     return;
   }
-  predictor_.begin_step(mesh_, probe_, start_positions_, step_, surface_epoch_);
+  predictor_.begin_step(mesh_, probe_, start_positions_, step_, surface_epoch_,
+                        carried_valid_ ? &carried_ : nullptr);
+  carried_valid_ = false;
   stats_.evaluations_reused += predictor_.reused_evaluations();
   predictor_.select(
       mesh_, probe_, samples_,

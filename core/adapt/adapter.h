@@ -187,6 +187,11 @@ class Adapter {
   // Rest-space points of the vertices before the surface's time changed (surfaces with a
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
+  // Where each vertex's material point went this step, before the projection and smoothing
+  // moved it on (predictive sampling on a surface with a rest map: ErrorPredictor's slide);
+  // valid when carried_valid_.
+  std::vector<Vec3> carried_;
+  bool carried_valid_ = false;
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
