@@ -29,8 +29,8 @@ constexpr double kSafety = 5.0;
 // with it 0.25 (PredictiveAnimation/capsule_bend, T = 0.002). Added only in steps whose
 // vertices were carried with the material (a rest map): there the seam stays under the same
 // faces and the slide guard does not see the face stretching across it. Without a rest map
-// a seam moves relative to the corners, which the slide guard (the whole move) measures, as
-// before session 9; applied there too, the term measured the twist's sheared sides needlessly
+// a seam moves relative to the corners, which the slide guard (the whole move) measures;
+// applied there too, the term measured the twist's sheared sides needlessly
 // (21% -> 28% of its faces, Cli.SamplingOptionChoosesWhatIsMeasured above 0.5).
 constexpr double kStrainGain = 2.0;
 

@@ -53,8 +53,8 @@
 //     reference measurement exceed kMaxTravelFraction of the smallest curvature radius the
 //     mesh's vertex normals show this step (curvature_radius(): one number for the whole mesh,
 //     so that no flat face is trusted next to a curved region sliding towards it). This is
-//     what catches a sudden jump in time. (Until session 9 the guard compared one step's move
-//     with a quarter of the face's shortest edge: at 10^6 triangles a step's motion tripped
+//     what catches a sudden jump in time. (A guard comparing one step's move with a quarter
+//     of the face's shortest edge, as this one once was: at 10^6 triangles a step's motion tripped
 //     it for 55% of the faces, though it moved them by ~1% of the curvature radius.)
 //   - Where the surface's curvature jumps (a C1 seam: the capsule's cylinder meeting its
 //     caps) the shape changes over no length at all: neither the linearisation above nor the
@@ -66,8 +66,8 @@
 //     capsule-bend's skipped faces on the inner side of its seams used 0.99 of their bound
 //     (PredictiveAnimation, T = 0.002), with it 0.25. (b) A seam sliding across the face changes
 //     its residual by ~ (slide / h) of its size: a face with a corner that slid over the surface by
-//     more than kMaxSlideFraction of its shortest edge this step is measured (as before session 9,
-//     but on the slide, not the move). The slide is the move relative to the surface's material
+//     more than kMaxSlideFraction of its shortest edge this step is measured (on the slide, not
+//     the whole move). The slide is the move relative to the surface's material
 //     where the surface has a rest map (capsule-bend: the vertices are carried with it, and only
 //     the correction and the smoothing slide them; the seam stays under the same faces), else the
 //     whole move.

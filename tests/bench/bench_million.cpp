@@ -6,7 +6,7 @@
 // faces measured, the share measured only because their corners travelled or slid too far
 // (ErrorPredictor::guarded) and the curvature radius the travel is held against, and the
 // share with a vertex that moved more than a quarter of the face's shortest edge this step
-// (the guard before session 9, which measured all of those whatever their bound said); the
+// (the predictor's former guard, which measured all of those whatever their bound said); the
 // steps that renumbered the mesh (AdaptOptions::renumber), the median renumbering time, and
 // the share of scattered faces left (spatial_order.h).
 //
