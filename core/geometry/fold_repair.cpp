@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
@@ -78,11 +79,13 @@ bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& f
   if (mesh.is_boundary(v) && surface.kind() == SurfaceKind::kImplicit) return false;
   Vec3 centroid = Vec3::Zero();
   int count = 0;
+  double shortest = std::numeric_limits<double>::infinity();
   mesh.for_each_corner_around(v, [&](Corner c) {
     const auto w = mesh.vertices(c.face);
-    centroid += mesh.position(w[static_cast<std::size_t>((c.local + 1) % 3)]) +
-                mesh.position(w[static_cast<std::size_t>((c.local + 2) % 3)]);
+    const Vec3& next = mesh.position(w[static_cast<std::size_t>((c.local + 1) % 3)]);
+    centroid += next + mesh.position(w[static_cast<std::size_t>((c.local + 2) % 3)]);
     count += 2;
+    shortest = std::min(shortest, (next - mesh.position(v)).norm());
   });
   if (count == 0) return false;
   centroid /= count;
@@ -94,17 +97,56 @@ bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& f
   const Vec2 old_uv = mesh.uv(v);
   const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
   const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
-  for (double scale : {1.0, 0.5, 0.25}) {
-    Vec3 position = old_position;
-    Vec2 uv = old_uv;
-    const bool ok = par ? parametric_move(*par, mesh, v, scale * move, uv, position)
-                        : implicit_move(*imp, mesh, v, scale * move, position, failures);
-    if (!ok) continue;
+  // The star's worst face after moving v by `step` (v is put back), or -inf if the move failed.
+  auto try_move = [&](const Vec3& step, Vec3& position, Vec2& uv) {
+    position = old_position;
+    uv = old_uv;
+    const bool ok = par ? parametric_move(*par, mesh, v, step, uv, position)
+                        : implicit_move(*imp, mesh, v, step, position, failures);
+    if (!ok) return -std::numeric_limits<double>::infinity();
     mesh.position(v) = position;
     mesh.uv(v) = uv;
-    if (star_score(mesh, surface, v) > before) return true;
+    const double score = star_score(mesh, surface, v);
     mesh.position(v) = old_position;
     mesh.uv(v) = old_uv;
+    return score;
+  };
+  Vec3 position;
+  Vec2 uv;
+  for (double scale : {1.0, 0.5, 0.25}) {
+    if (try_move(scale * move, position, uv) > before) {
+      mesh.position(v) = position;
+      mesh.uv(v) = uv;
+      return true;
+    }
+  }
+  // Where the surface bends strongly under the ring, the tangent-plane centroid can be where
+  // v already is (the ring's pull is all along the normal) while its triangles are thin:
+  // measured on mri's way back up from 20 mm, vertices of faces left at 5-9 degrees had
+  // centroid moves 0.4-0.9 mm long, most of them within 0.04 mm of the normal, and the faces
+  // stayed below 10 degrees frame after frame (down to 4.9985). Then a pattern search: 8
+  // tangent directions at a tenth, a thirtieth and a hundredth of v's shortest edge; the move
+  // that makes the star's worst face best is kept (the largest step that improves). With it
+  // every frame of that sweep stays above 10 degrees, with predictive and full sampling. With
+  // steps of a third instead, full sampling's last frame kept 15 folded faces, after a sub-step
+  // of 155 splits (5x the usual) around vertices the search had moved (one trajectory each).
+  const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  const Vec3 t2 = n.cross(t1);
+  for (double fraction : {0.1, 1.0 / 30.0, 0.01}) {
+    double best = before;
+    Vec3 best_position = old_position;
+    Vec2 best_uv = old_uv;
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4;
+      const double score =
+          try_move(fraction * shortest * (std::cos(a) * t1 + std::sin(a) * t2), position, uv);
+      if (score > best) best = score, best_position = position, best_uv = uv;
+    }
+    if (best > before) {
+      mesh.position(v) = best_position;
+      mesh.uv(v) = best_uv;
+      return true;
+    }
   }
   return false;
 }

@@ -11,7 +11,8 @@
 // vertices' area-weighted mesh normals, smallest angles); only the few candidates evaluate the
 // surface. Repair is local relaxation: each vertex of a bad face moves towards its one-ring's
 // centroid in its tangent plane and back onto the surface, kept only if the worst face of its
-// star gets better; rings that stay bad widen to their neighbours, round after round.
+// star gets better (where the centroid does not help, the best of a few small tangent moves
+// around it); rings that stay bad widen to their neighbours, round after round.
 #pragma once
 
 #include <cstddef>
