@@ -98,20 +98,46 @@ int run_frames(MotionRun& run, const std::vector<double>& times, int steps_per_s
 }
 
 // Judges the frames a CLI run exported to `frames` (frame_00000.ply .. frame_<last>.ply) as they
-// lie on disk: each an embedded closed manifold with no angle below `min_angle_deg`. Returns the
-// smallest angle seen.
-double expect_exported_frames_ok(const std::filesystem::path& frames, int last,
-                                 double min_angle_deg) {
-  double smallest = 180.0;
+// lie on disk: each an embedded closed manifold with no angle below `min_angle_deg`. Returns
+// each frame's smallest angle.
+std::vector<double> expect_exported_frames_ok(const std::filesystem::path& frames, int last,
+                                              double min_angle_deg) {
+  std::vector<double> smallest;
   for (int step = 0; step <= last; ++step) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.ply", step);
     const test::MeshValidity v = test::check_mesh_validity_of_file((frames / name).string());
     EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
     EXPECT_GE(v.min_angle_deg, min_angle_deg) << name << ": " << v.describe();
-    smallest = std::min(smallest, v.min_angle_deg);
+    smallest.push_back(v.min_angle_deg);
   }
   return smallest;
+}
+
+// One column of a stats CSV (--stats), a cell per step.
+std::vector<std::string> stats_column(const std::filesystem::path& csv_path,
+                                      const std::string& name) {
+  std::ifstream csv(csv_path);
+  std::string line;
+  std::getline(csv, line);
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string cell; std::getline(hs, cell, ',');) names.push_back(cell);
+  const auto column =
+      static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  std::vector<std::string> cells;
+  if (column == names.size()) {
+    ADD_FAILURE() << "no column " << name << " in " << line;
+    return cells;
+  }
+  while (std::getline(csv, line)) {
+    std::vector<std::string> row;
+    std::stringstream ls(line);
+    for (std::string cell; std::getline(ls, cell, ',');) row.push_back(cell);
+    EXPECT_EQ(row.size(), names.size()) << line;
+    cells.push_back(column < row.size() ? row[column] : "");
+  }
+  return cells;
 }
 
 void expect_returns(const std::vector<double>& r, const std::string& scene) {
@@ -211,21 +237,45 @@ TEST(MotionFrames, MriDownAndBackUpThreeTimes) {
 }
 
 // The issue's own mri run, 0 -> 20 -> 0 mm in 20 + 20 steps (the test above sweeps half as
-// deep at the same speed per step, three times). Of all the strong motions its smallest angle
-// is the closest to its bar: 5.23 degrees (5.56 in session 5's engine), on the way back up,
-// at 1 mm; 9.9 degrees at its worst on the way down. Every one of the 41 exported frames is
-// judged as it lies on disk.
-TEST(MotionFrames, MriDownTwentyMillimetresAndBack) {
+// deep at the same speed per step, three times), with predictive and with full sampling: two
+// trajectories through the same motion. Every one of the 41 exported frames is judged as it
+// lies on disk. Of all the strong motions this one's smallest angle was the closest to its
+// bar, and a matter of luck: 5.23 degrees predictive, 4.9985 full (at 0 mm on the way back
+// up), before the fold repair searched around vertices the centroid could not move
+// (fold_repair.cpp, relax_vertex) and the frame was screened again after the splits that
+// follow a repair (Adapter::publish_repaired). And whatever is left below the repair's
+// 10-degree floor is reported in the stats (slivers_left), never hidden.
+class MriDownTwentyMillimetresAndBack : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MriDownTwentyMillimetresAndBack, EveryFrameEmbeddedAndReported) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
-  const std::filesystem::path dir = test::cli_scratch("mri_twenty");
+  const std::filesystem::path dir = test::cli_scratch(std::string("mri_twenty_") + GetParam());
   const test::CliRun r =
       test::run_cli({"--scene", "mri", "--param", "depth_max=20", "--keyframes", "0,1,0", "--steps",
-                     "20", "--export", (dir / "frames").string(), "--quiet"});
+                     "20", "--sampling", GetParam(), "--export", (dir / "frames").string(),
+                     "--stats", (dir / "stats.csv").string(), "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  const double smallest = expect_exported_frames_ok(dir / "frames", 40, 5.0);
-  RecordProperty("smallest_angle_deg", std::to_string(smallest));
+  const std::vector<double> smallest = expect_exported_frames_ok(dir / "frames", 40, 5.0);
+  const std::vector<std::string> folds = stats_column(dir / "stats.csv", "folds_left"),
+                                 slivers = stats_column(dir / "stats.csv", "slivers_left");
+  ASSERT_EQ(slivers.size(), smallest.size());
+  ASSERT_EQ(folds.size(), smallest.size());
+  // The file holds single-precision positions: a face at 10 degrees may read a little less.
+  for (std::size_t i = 0; i < smallest.size(); ++i) {
+    if (smallest[i] >= 9.99) continue;
+    EXPECT_GT(std::stoi(folds[i]) + std::stoi(slivers[i]), 0)
+        << "frame " << i << " has an angle of " << smallest[i] << " degrees, reported as none";
+  }
+  RecordProperty("smallest_angle_deg",
+                 std::to_string(*std::min_element(smallest.begin(), smallest.end())));
   std::filesystem::remove_all(dir);
 }
+
+INSTANTIATE_TEST_SUITE_P(MotionFrames, MriDownTwentyMillimetresAndBack,
+                         ::testing::Values("predictive", "full"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           return std::string(info.param);
+                         });
 
 // The same through the real binary: dynamesh-cli exports every frame of a strong twist (3 turns
 // in 5 steps at T = 0.006: without the safeguards its last frame's smallest angle is 7.3
@@ -244,27 +294,14 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
       " --export-every 1 --quiet > " + (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   expect_exported_frames_ok(dir / "frames", 5, 10.0);
-  std::ifstream csv(dir / "stats.csv");
-  std::string header, line;
-  std::getline(csv, header);
-  std::vector<std::string> names;
-  std::stringstream hs(header);
-  for (std::string cell; std::getline(hs, cell, ',');) names.push_back(cell);
-  auto column = [&](const std::string& n) {
-    return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin());
-  };
-  const std::size_t substeps = column("substeps"), folds = column("folds_left"),
-                    slivers = column("slivers_left");
-  ASSERT_LT(std::max({substeps, folds, slivers}), names.size()) << header;
+  const std::vector<std::string> substeps = stats_column(dir / "stats.csv", "substeps"),
+                                 folds = stats_column(dir / "stats.csv", "folds_left"),
+                                 slivers = stats_column(dir / "stats.csv", "slivers_left");
   int most_substeps = 0;
-  while (std::getline(csv, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string cell; std::getline(ls, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), names.size()) << line;
-    most_substeps = std::max(most_substeps, std::stoi(cells[substeps]));
-    EXPECT_EQ(cells[folds], "0") << line;
-    EXPECT_EQ(cells[slivers], "0") << line;
+  for (std::size_t i = 0; i < substeps.size(); ++i) {
+    most_substeps = std::max(most_substeps, std::stoi(substeps[i]));
+    EXPECT_EQ(folds[i], "0") << "step " << i;
+    EXPECT_EQ(slivers[i], "0") << "step " << i;
   }
   EXPECT_GT(most_substeps, 1) << "a 3-turn twist in 5 steps must be sub-stepped";
   fs::remove_all(dir);
