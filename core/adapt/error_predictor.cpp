@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/adapt/error_model.h"
 #include "core/parallel.h"
 
 namespace dynamesh {
@@ -61,13 +62,14 @@ Change change(const float (&now)[3][3], const float (&then)[3][3]) {
 }
 
 // The largest change over the triangle of the residual's quadratic part,
-// sum_e b_i b_j dc_e: exact where the residual is scalar (implicit), else with max of
-// sum b_i b_j = 1/3 and of b_i b_j = 1/4.
+// sum_e b_i b_j dc_e: exact where the residual is scalar (implicit; scalar_maximum, at most
+// the estimate below and at least 3/4 of it: x = (1, 1, 0) gives 1/4, not 1/3), else with the
+// maxima of sum b_i b_j (1/3) and of b_i b_j (1/4).
 double quadratic_change(const float (&now)[3][3], const float (&then)[3][3], bool scalar) {
   if (scalar) {
     double x[3];
     for (int e = 0; e < 3; ++e) x[e] = static_cast<double>(now[e][0]) - then[e][0];
-    return scalar_quadratic_peak(x[0], x[1], x[2]);
+    return scalar_maximum(x[0], x[1], x[2]);
   }
   const Change c = change(now, then);
   return std::min(c.largest / 3.0, c.sum / 4.0);
@@ -82,23 +84,6 @@ double strain(const float (&now)[3], const float (&then)[3]) {
 }
 
 }  // namespace
-
-// On an edge q is x_e b b', largest at its midpoint (|x_e| / 4); inside, q's only critical point on
-// the plane sum b = 1 solves M b = lambda 1 (M the symmetric matrix of q with zero diagonal), b
-// proportional to adj(M) 1, when M is regular (else some x_e = 0 and q is largest on an edge).
-// Exact, so at most the min(max |x| / 3, sum |x| / 4) it replaces, and up to 3/4 of it: x = (1, 1,
-// 0) gives 1/4, not 1/3 (only x_0 = x_1 = x_2 reaches max |x| / 3).
-double scalar_quadratic_peak(double x0, double x1, double x2) {
-  double peak = std::max({std::abs(x0), std::abs(x1), std::abs(x2)}) / 4.0;
-  const double u0 = x0 * (x1 + x2 - x0), u1 = x1 * (x0 + x2 - x1), u2 = x2 * (x0 + x1 - x2);
-  const double sum = u0 + u1 + u2;
-  if (sum != 0.0) {
-    const double b0 = u0 / sum, b1 = u1 / sum, b2 = u2 / sum;
-    if (b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0)
-      peak = std::max(peak, std::abs(x0 * b1 * b2 + x1 * b2 * b0 + x2 * b0 * b1));
-  }
-  return peak;
-}
 
 void ErrorPredictor::invalidate() {
   std::fill(has_reference_.begin(), has_reference_.end(), 0);

@@ -21,17 +21,17 @@
 // along the edge. Between the face's last measurement and now, the error can therefore have
 // changed by at most
 //   max |sum b_i b_j dc_ij| + min(max |dd| 0.1176, sum |dd| / (6 sqrt 3)),
-// dc, dd the changes of the coefficients, the first maximum over the triangle: exact where the
-// residual is scalar (implicit: scalar_quadratic_peak), else min(max |dc| / 3, sum |dc| / 4)
-// (the maxima of sum b_i b_j and of b_i b_j); the second from the maxima of
-// sum b_i b_j |b_j - b_i| and of one such term. This covers every cause the step knows of — the
-// vertices' normal correction and tangential moves (through p and uv), the surface's own motion
-// (through the normals and Jacobians at the vertices' new places), and how that motion varies
-// across the face (a rigid motion of a face with its surface leaves c and d unchanged, however
-// fast). The cubic term is needed where a face slides across a change of curvature (twist's rounded
-// rims, where smoothing moves vertices around the section): there d flips sign while c barely
-// changes, and the sampled reading of a skipped face moved by 1.4x a bound without d
-// (PredictiveAnimation/twist, T = 0.002).
+// dc, dd the changes of the coefficients. The first maximum is over the triangle: exact where
+// the residual is scalar (implicit: scalar_maximum, error_model.h), else
+// min(max |dc| / 3, sum |dc| / 4) (the maxima of sum b_i b_j and of b_i b_j); the second comes
+// from the maxima of sum b_i b_j |b_j - b_i| and of one such term. This covers every cause the
+// step knows of — the vertices' normal correction and tangential moves (through p and uv), the
+// surface's own motion (through the normals and Jacobians at the vertices' new places), and how
+// that motion varies across the face (a rigid motion of a face with its surface leaves c and d
+// unchanged, however fast). The cubic term is needed where a face slides across a change of
+// curvature (twist's rounded rims, where smoothing moves vertices around the section): there d
+// flips sign while c barely changes, and the sampled reading of a skipped face moved by 1.4x a
+// bound without d (PredictiveAnimation/twist, T = 0.002).
 //
 // Assumptions, and what guards them:
 //   - The residual is cubic over the triangle. Faces where the quadratic model did not fit
@@ -98,11 +98,6 @@
 #include "core/surface/projection.h"
 
 namespace dynamesh {
-
-// The largest |q(b)| over the triangle (b >= 0, sum b = 1) of the quadratic
-// q(b) = x0 b1 b2 + x1 b2 b0 + x2 b0 b1: exact (the predictor's bound on the change of an
-// implicit surface's residual, whose coefficients are scalars).
-double scalar_quadratic_peak(double x0, double x1, double x2);
 
 class ErrorPredictor final : public MeshListener {
  public:

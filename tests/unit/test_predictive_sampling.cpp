@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/adapt/adapter.h"
+#include "core/adapt/error_model.h"
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
 #include "scene_run.h"
@@ -202,7 +203,8 @@ TEST(PredictiveSampling, StaticSurfaceMeasuresOnlyTheRotatingFraction) {
   }
 }
 
-// The bound's quadratic part on implicit surfaces: scalar_quadratic_peak against the largest
+// The bound's quadratic part on implicit surfaces (and the scalar model's maximum):
+// scalar_maximum against the largest
 // |q| on a fine barycentric lattice (which, q being smooth, is within O(1/n^2) of the true
 // maximum from below), for coefficients of both signs, zeros and ties.
 TEST(PredictiveSampling, QuadraticPeakIsTheLargestValueOverTheTriangle) {
@@ -222,7 +224,7 @@ TEST(PredictiveSampling, QuadraticPeakIsTheLargestValueOverTheTriangle) {
         lattice = std::max(lattice, std::abs(x[0] * b1 * b2 + x[1] * b2 * b0 + x[2] * b0 * b1));
       }
     const double scale = std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-    const double peak = scalar_quadratic_peak(x[0], x[1], x[2]);
+    const double peak = scalar_maximum(x[0], x[1], x[2]);
     EXPECT_GE(peak, lattice - 1e-12) << x[0] << " " << x[1] << " " << x[2];
     EXPECT_LE(peak, lattice + 1e-5 * scale) << x[0] << " " << x[1] << " " << x[2];
   }
