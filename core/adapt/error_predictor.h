@@ -164,9 +164,10 @@ class ErrorPredictor final : public MeshListener {
 
  private:
   // First-order data of a vertex: implicit: the unit normal (a); parametric: S_u (a), S_v (b).
-  // `offset`: the vertex's distance to the surface (implicit, first order; 0 parametric).
+  // `normal`: the unit normal (the curvature radius' estimate). `offset`: the vertex's distance
+  // to the surface (implicit, first order; 0 parametric).
   struct VertexFrame {
-    Vec3 a{Vec3::Zero()}, b{Vec3::Zero()};
+    Vec3 a{Vec3::Zero()}, b{Vec3::Zero()}, normal{Vec3::Zero()};
     double offset = 0.0;
   };
   struct Coefficients {
@@ -181,8 +182,9 @@ class ErrorPredictor final : public MeshListener {
   void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
                       std::uint64_t epoch = 0);
   Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
-  // The largest normal curvature along the face's edges (chord estimate), from the frames.
-  double edge_curvature(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
+  // The same from the face's corners and edges (edge e from corner e + 1 to corner e + 2).
+  Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe,
+                            const std::array<Vertex, 3>& v, const Vec3 (&edges)[3]) const;
 
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;
