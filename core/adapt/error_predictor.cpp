@@ -254,7 +254,7 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       const double quadratic = quadratic_change(now.c, reference_[k].c, !probe.parametric());
       const Change cubic = change(now.d, reference_[k].d);
       double offset = 0.0;
-      for (Vertex v : mesh.vertices(f)) offset = std::max(offset, frame_[v.idx].offset);
+      for (Vertex x : v) offset = std::max(offset, frame_[x.idx].offset);
       const double stretch = strain(now.length, reference_[k].length);
       const double residual =
           kSafety * (quadratic + std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) +
