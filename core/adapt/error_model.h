@@ -79,4 +79,8 @@ struct EdgePeak {
 };
 EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quarters);
 
+// Largest |a b1 b2 + b b2 b0 + c b0 b1| over the triangle b >= 0, b0 + b1 + b2 = 1 (exact): the
+// scalar model's maximum, and the predictor's bound on a scalar residual's quadratic change.
+double scalar_maximum(double a, double b, double c);
+
 }  // namespace dynamesh

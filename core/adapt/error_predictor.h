@@ -20,16 +20,18 @@
 // quadratic model's coefficient, error_model.h), d_ij how that second derivative changes
 // along the edge. Between the face's last measurement and now, the error can therefore have
 // changed by at most
-//   min(max |dc| / 3, sum |dc| / 4) + min(max |dd| 0.1176, sum |dd| / (6 sqrt 3)),
-// dc, dd the changes of the coefficients (the maxima over the triangle of sum b_i b_j and of
-// sum b_i b_j |b_j - b_i|). This covers every cause the step knows of — the vertices' normal
-// correction and tangential moves (through p and uv), the surface's own motion (through the
-// normals and Jacobians at the vertices' new places), and how that motion varies across the
-// face (a rigid motion of a face with its surface leaves c and d unchanged, however fast).
-// The cubic term is needed where a face slides across a change of curvature (twist's rounded
-// rims, where smoothing moves vertices around the section): there d flips sign while c barely
-// changes, and the sampled reading of a skipped face moved by 1.4x a bound without d
-// (PredictiveAnimation/twist, T = 0.002).
+//   max |sum b_i b_j dc_ij| + min(max |dd| 0.1176, sum |dd| / (6 sqrt 3)),
+// dc, dd the changes of the coefficients. The first maximum is over the triangle: exact where
+// the residual is scalar (implicit: scalar_maximum, error_model.h), else
+// min(max |dc| / 3, sum |dc| / 4) (the maxima of sum b_i b_j and of b_i b_j); the second comes
+// from the maxima of sum b_i b_j |b_j - b_i| and of one such term. This covers every cause the
+// step knows of — the vertices' normal correction and tangential moves (through p and uv), the
+// surface's own motion (through the normals and Jacobians at the vertices' new places), and how
+// that motion varies across the face (a rigid motion of a face with its surface leaves c and d
+// unchanged, however fast). The cubic term is needed where a face slides across a change of
+// curvature (twist's rounded rims, where smoothing moves vertices around the section): there d
+// flips sign while c barely changes, and the sampled reading of a skipped face moved by 1.4x a
+// bound without d (PredictiveAnimation/twist, T = 0.002).
 //
 // Assumptions, and what guards them:
 //   - The residual is cubic over the triangle. Faces where the quadratic model did not fit
@@ -162,9 +164,10 @@ class ErrorPredictor final : public MeshListener {
 
  private:
   // First-order data of a vertex: implicit: the unit normal (a); parametric: S_u (a), S_v (b).
-  // `offset`: the vertex's distance to the surface (implicit, first order; 0 parametric).
+  // `normal`: the unit normal (the curvature radius' estimate). `offset`: the vertex's distance
+  // to the surface (implicit, first order; 0 parametric).
   struct VertexFrame {
-    Vec3 a{Vec3::Zero()}, b{Vec3::Zero()};
+    Vec3 a{Vec3::Zero()}, b{Vec3::Zero()}, normal{Vec3::Zero()};
     double offset = 0.0;
   };
   struct Coefficients {
@@ -179,8 +182,9 @@ class ErrorPredictor final : public MeshListener {
   void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
                       std::uint64_t epoch = 0);
   Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
-  // The largest normal curvature along the face's edges (chord estimate), from the frames.
-  double edge_curvature(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
+  // The same from the face's corners and edges (edge e from corner e + 1 to corner e + 2).
+  Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe,
+                            const std::array<Vertex, 3>& v, const Vec3 (&edges)[3]) const;
 
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;

@@ -96,7 +96,7 @@ void BM_Step(benchmark::State& state, const std::string& name, double threshold)
   state.counters["ratio"] = total / yard;
 }
 
-// Median step (and its sampling phase) with predictive or full sampling, t stepping by 1e-3
+// Median step (and each of its phases) with predictive or full sampling, t stepping by 1e-3
 // from 0.5 after 8 warm-up steps (predictive sampling needs a step to have references); also
 // the median step in process CPU time (median_step_cpu_ms), for a loaded machine.
 void BM_Sampling(benchmark::State& state, const std::string& name, double threshold,
@@ -104,14 +104,18 @@ void BM_Sampling(benchmark::State& state, const std::string& name, double thresh
   Scene s = adapted(name, threshold, sampling);
   double t = 0.5;
   for (int i = 0; i < 8; ++i) s.adapter->step(t += 1e-3);
-  std::vector<double> step, sample, cpu;
+  std::vector<double> step, project, smooth, sample, weld, split, cpu;
   double measured = 0, faces = 0;
   for (auto _ : state) {
     const double cpu_before = process_cpu_seconds();
     const StepStats& st = s.adapter->step(t += 1e-3);
     cpu.push_back(process_cpu_seconds() - cpu_before);
     step.push_back(st.seconds.total);
+    project.push_back(st.seconds.project);
+    smooth.push_back(st.seconds.smooth);
     sample.push_back(st.seconds.sample);
+    weld.push_back(st.seconds.weld);
+    split.push_back(st.seconds.split);
     measured += static_cast<double>(st.faces_measured);
     faces += static_cast<double>(st.triangles);
   }
@@ -121,7 +125,11 @@ void BM_Sampling(benchmark::State& state, const std::string& name, double thresh
   };
   state.counters["triangles"] = static_cast<double>(s.adapter->mesh().n_faces());
   state.counters["median_step_ms"] = 1e3 * median(step);
+  state.counters["median_project_ms"] = 1e3 * median(project);
+  state.counters["median_smooth_ms"] = 1e3 * median(smooth);
   state.counters["median_sample_ms"] = 1e3 * median(sample);
+  state.counters["median_weld_ms"] = 1e3 * median(weld);
+  state.counters["median_split_ms"] = 1e3 * median(split);
   state.counters["median_step_cpu_ms"] = 1e3 * median(cpu);
   state.counters["measured_share"] = measured / faces;
 }

@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "core/adapt/adapter.h"
+#include "core/adapt/error_model.h"
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
 #include "scene_run.h"
@@ -197,6 +200,33 @@ TEST(PredictiveSampling, StaticSurfaceMeasuresOnlyTheRotatingFraction) {
     EXPECT_EQ(s.splits + s.welds, 0u);
     EXPECT_LE(static_cast<double>(s.faces_measured),
               1.5 * static_cast<double>(triangles) / ErrorPredictor::kRotation);
+  }
+}
+
+// The bound's quadratic part on implicit surfaces (and the scalar model's maximum):
+// scalar_maximum against the largest
+// |q| on a fine barycentric lattice (which, q being smooth, is within O(1/n^2) of the true
+// maximum from below), for coefficients of both signs, zeros and ties.
+TEST(PredictiveSampling, QuadraticPeakIsTheLargestValueOverTheTriangle) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<std::array<double, 3>> cases = {{1, 1, 1},  {1, 1, 0},   {1, -1, 0},   {1, -1, 1},
+                                              {0, 0, 0},  {0, 0, 2},   {-1, -1, -1}, {3, 1, 1},
+                                              {1, 2, -3}, {1e-9, 1, 1}};
+  for (int i = 0; i < 200; ++i) cases.push_back({uniform(rng), uniform(rng), uniform(rng)});
+  constexpr int n = 600;
+  for (const auto& x : cases) {
+    double lattice = 0.0;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const double b0 = static_cast<double>(i) / n, b1 = static_cast<double>(j) / n,
+                     b2 = 1.0 - b0 - b1;
+        lattice = std::max(lattice, std::abs(x[0] * b1 * b2 + x[1] * b2 * b0 + x[2] * b0 * b1));
+      }
+    const double scale = std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+    const double peak = scalar_maximum(x[0], x[1], x[2]);
+    EXPECT_GE(peak, lattice - 1e-12) << x[0] << " " << x[1] << " " << x[2];
+    EXPECT_LE(peak, lattice + 1e-5 * scale) << x[0] << " " << x[1] << " " << x[2];
   }
 }
 
