@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "stats_table.h"
+
 namespace dynamesh {
 namespace {
 
@@ -118,14 +120,6 @@ TEST(Cli, HelpTeaches) {
     EXPECT_NE(scenes.out.find(scene), std::string::npos) << scene;
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> cells;
-  std::stringstream s(line);
-  std::string cell;
-  while (std::getline(s, cell, sep)) cells.push_back(cell);
-  return cells;
-}
-
 TEST(Cli, GoodRunJsonMatchesCsvAndFiles) {
   const fs::path dir = scratch();
   const fs::path csv = dir / "stats.csv", ply = dir / "final.ply", frames = dir / "frames";
@@ -141,23 +135,9 @@ TEST(Cli, GoodRunJsonMatchesCsvAndFiles) {
         "seconds_per_step", "valence_min", "valence_max", "min_angle_deg"})
     EXPECT_TRUE(json.contains(key)) << key;
 
-  std::ifstream in(csv);
-  std::string header, line, last;
-  std::getline(in, header);
-  int rows = 0;
-  while (std::getline(in, line)) {
-    last = line;
-    ++rows;
-  }
-  EXPECT_EQ(rows, 7);  // step 0 (initialisation) and 6 steps
-  const auto names = split(header, ','), cells = split(last, ',');
-  ASSERT_EQ(names.size(), cells.size());
-  auto cell = [&](const std::string& name) {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == name) return std::stod(cells[i]);
-    ADD_FAILURE() << "no column " << name;
-    return 0.0;
-  };
+  const test::StatsTable stats(csv);
+  ASSERT_EQ(stats.rows(), 7u);  // step 0 (initialisation) and 6 steps
+  auto cell = [&](const std::string& name) { return stats.number(6, name); };
   EXPECT_EQ(json["triangles"].get<double>(), cell("triangles"));
   EXPECT_EQ(json["vertices"].get<double>(), cell("vertices"));
   EXPECT_EQ(json["splits"].get<double>(), cell("total_splits"));
@@ -203,22 +183,14 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
     EXPECT_EQ(r.status, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
     EXPECT_LE(json["max_sample_error"].get<double>(), 0.005 + 1e-12) << mode;  // T + eps
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
-    const auto names = split(line, ',');
-    const auto column = [&](const char* name) {
-      return std::find(names.begin(), names.end(), name) - names.begin();
-    };
-    // Each step measures the faces of the mesh the previous step left.
-    double measured = 0, faces = 0, previous = 0;
-    std::getline(in, line);  // step 0, the initial adaptation, measures everything
-    previous = std::stod(split(line, ',').at(column("triangles")));
-    while (std::getline(in, line)) {
-      const auto cells = split(line, ',');
-      measured += std::stod(cells.at(column("faces_measured")));
-      faces += previous;
-      previous = std::stod(cells.at(column("triangles")));
+    // Each step measures the faces of the mesh the previous step left; row 0, the initial
+    // adaptation, measures everything.
+    const test::StatsTable stats(csv);
+    EXPECT_EQ(stats.rows(), 9u) << mode;
+    double measured = 0, faces = 0;
+    for (std::size_t k = 1; k < stats.rows(); ++k) {
+      measured += stats.number(k, "faces_measured");
+      faces += stats.number(k - 1, "triangles");
     }
     return measured / faces;
   };
@@ -239,41 +211,25 @@ TEST(Cli, SamplingOptionChoosesWhatIsMeasured) {
 // numbering, a step that welded nothing keeps every vertex it started with.
 TEST(Cli, RenumberOptionKeepsSurvivalCounted) {
   const fs::path dir = scratch();
-  using Rows = std::vector<std::vector<std::string>>;
-  std::vector<std::string> names;
   auto run = [&](const std::string& mode) {
     const fs::path csv = dir / ("renumber_" + mode + ".csv");
     // The growing sphere: thousands of splits per step scatter the numbering quickly.
     const Result r = run_cli("run --scene sphere --threshold 0.002 --steps 10 --renumber " + mode +
                              " --quiet --stats " + csv.string());
     EXPECT_EQ(r.status, 0) << r.err;
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
-    names = split(line, ',');
-    Rows rows;
-    while (std::getline(in, line)) rows.push_back(split(line, ','));
-    return rows;
+    return test::StatsTable(csv);
   };
-  const auto column = [&](const char* name) {
-    const auto i = std::find(names.begin(), names.end(), name) - names.begin();
-    EXPECT_LT(static_cast<std::size_t>(i), names.size()) << name;
-    return static_cast<std::size_t>(i);
-  };
-  const Rows on = run("on"), off = run("off");
-  ASSERT_EQ(on.size(), 11u);
-  ASSERT_EQ(off.size(), 11u);
-  const auto number = [&](const Rows& rows, std::size_t k, const char* name) {
-    return std::stod(rows[k].at(column(name)));
-  };
+  const test::StatsTable on = run("on"), off = run("off");
+  ASSERT_EQ(on.rows(), 11u);
+  ASSERT_EQ(off.rows(), 11u);
   std::size_t first = 0;  // the first renumbered step
   int renumbered = 0;
-  for (std::size_t k = 0; k < on.size(); ++k) {
-    EXPECT_EQ(number(off, k, "renumbered"), 0) << k;
-    renumbered += number(on, k, "renumbered") == 1;
-    if (first == 0 && number(on, k, "renumbered") == 1) first = k;
-    if (k > 0 && number(on, k, "welds") == 0) {
-      EXPECT_EQ(number(on, k, "vertices_kept"), number(on, k - 1, "vertices")) << k;
+  for (std::size_t k = 0; k < on.rows(); ++k) {
+    EXPECT_EQ(off.number(k, "renumbered"), 0) << k;
+    renumbered += on.number(k, "renumbered") == 1;
+    if (first == 0 && on.number(k, "renumbered") == 1) first = k;
+    if (k > 0 && on.number(k, "welds") == 0) {
+      EXPECT_EQ(on.number(k, "vertices_kept"), on.number(k - 1, "vertices")) << k;
     }
   }
   ASSERT_GE(first, 1u);
@@ -281,19 +237,19 @@ TEST(Cli, RenumberOptionKeepsSurvivalCounted) {
   for (std::size_t k = 1; k <= first; ++k) {
     for (const char* exact : {"triangles", "vertices", "splits", "welds", "vertices_kept",
                               "kept_fraction", "survivor_displacement_max", "max_error"})
-      EXPECT_EQ(on[k].at(column(exact)), off[k].at(column(exact))) << exact << ", step " << k;
-    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
-                number(off, k, "survivor_displacement_mean"),
-                1e-9 * number(off, k, "survivor_displacement_mean"))
+      EXPECT_EQ(on.cell(k, exact), off.cell(k, exact)) << exact << ", step " << k;
+    EXPECT_NEAR(on.number(k, "survivor_displacement_mean"),
+                off.number(k, "survivor_displacement_mean"),
+                1e-9 * off.number(k, "survivor_displacement_mean"))
         << k;
   }
-  for (std::size_t k = first + 1; k < on.size(); ++k) {
-    EXPECT_NEAR(number(on, k, "triangles"), number(off, k, "triangles"),
-                0.02 * number(off, k, "triangles"));
-    EXPECT_NEAR(number(on, k, "kept_fraction"), number(off, k, "kept_fraction"), 0.02);
-    EXPECT_NEAR(number(on, k, "survivor_displacement_mean"),
-                number(off, k, "survivor_displacement_mean"),
-                0.02 * number(off, k, "survivor_displacement_mean"));
+  for (std::size_t k = first + 1; k < on.rows(); ++k) {
+    EXPECT_NEAR(on.number(k, "triangles"), off.number(k, "triangles"),
+                0.02 * off.number(k, "triangles"));
+    EXPECT_NEAR(on.number(k, "kept_fraction"), off.number(k, "kept_fraction"), 0.02);
+    EXPECT_NEAR(on.number(k, "survivor_displacement_mean"),
+                off.number(k, "survivor_displacement_mean"),
+                0.02 * off.number(k, "survivor_displacement_mean"));
   }
   fs::remove_all(dir);
 }

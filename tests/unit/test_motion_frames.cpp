@@ -14,9 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -25,6 +23,7 @@
 #include "core/surface/scene_registry.h"
 #include "core/surface/volume/mri_layers.h"
 #include "dense_error.h"
+#include "stats_table.h"
 #include "tests/support/mesh_validity.h"
 
 namespace dynamesh {
@@ -112,32 +111,6 @@ std::vector<double> expect_exported_frames_ok(const std::filesystem::path& frame
     smallest.push_back(v.min_angle_deg);
   }
   return smallest;
-}
-
-// One column of a stats CSV (--stats), a cell per step.
-std::vector<std::string> stats_column(const std::filesystem::path& csv_path,
-                                      const std::string& name) {
-  std::ifstream csv(csv_path);
-  std::string line;
-  std::getline(csv, line);
-  std::vector<std::string> names;
-  std::stringstream hs(line);
-  for (std::string cell; std::getline(hs, cell, ',');) names.push_back(cell);
-  const auto column =
-      static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
-  std::vector<std::string> cells;
-  if (column == names.size()) {
-    ADD_FAILURE() << "no column " << name << " in " << line;
-    return cells;
-  }
-  while (std::getline(csv, line)) {
-    std::vector<std::string> row;
-    std::stringstream ls(line);
-    for (std::string cell; std::getline(ls, cell, ',');) row.push_back(cell);
-    EXPECT_EQ(row.size(), names.size()) << line;
-    cells.push_back(column < row.size() ? row[column] : "");
-  }
-  return cells;
 }
 
 void expect_returns(const std::vector<double>& r, const std::string& scene) {
@@ -257,8 +230,9 @@ TEST_P(MriDownTwentyMillimetresAndBack, EveryFrameEmbeddedAndReported) {
                      "--stats", (dir / "stats.csv").string(), "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   const std::vector<double> smallest = expect_exported_frames_ok(dir / "frames", 40, 5.0);
-  const std::vector<std::string> folds = stats_column(dir / "stats.csv", "folds_left"),
-                                 slivers = stats_column(dir / "stats.csv", "slivers_left");
+  const test::StatsTable stats(dir / "stats.csv");
+  const std::vector<std::string> folds = stats.column("folds_left"),
+                                 slivers = stats.column("slivers_left");
   ASSERT_EQ(slivers.size(), smallest.size());
   ASSERT_EQ(folds.size(), smallest.size());
   // The file holds single-precision positions: a face at 10 degrees may read a little less.
@@ -295,9 +269,10 @@ TEST(MotionFrames, CliExportsOnlyEmbeddedFrames) {
       " --export-every 1 --quiet > " + (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   expect_exported_frames_ok(dir / "frames", 5, 10.0);
-  const std::vector<std::string> substeps = stats_column(dir / "stats.csv", "substeps"),
-                                 folds = stats_column(dir / "stats.csv", "folds_left"),
-                                 slivers = stats_column(dir / "stats.csv", "slivers_left");
+  const test::StatsTable stats(dir / "stats.csv");
+  const std::vector<std::string> substeps = stats.column("substeps"),
+                                 folds = stats.column("folds_left"),
+                                 slivers = stats.column("slivers_left");
   int most_substeps = 0;
   for (std::size_t i = 0; i < substeps.size(); ++i) {
     most_substeps = std::max(most_substeps, std::stoi(substeps[i]));

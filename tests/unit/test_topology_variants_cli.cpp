@@ -25,6 +25,7 @@
 #include "core/surface/scene_registry.h"
 #include "dense_error.h"
 #include "ply_reader.h"
+#include "stats_table.h"
 #include "tests/support/mesh_validity.h"
 #include "topology_measure.h"
 
@@ -182,23 +183,11 @@ void run_and_judge(const Variant& v) {
     EXPECT_EQ(ref.surface_euler, euler) << frame << " (voxel reference)";
   }
   // Coherence: the mean over the steps of the fraction of vertices kept (the CSV's column).
-  std::ifstream csv(dir / "stats.csv");
-  std::string header;
-  std::getline(csv, header);
-  std::size_t column = 0;
-  {
-    std::stringstream names(header);
-    for (std::string name; std::getline(names, name, ',') && name != "kept_fraction";) ++column;
-  }
+  const test::StatsTable stats(dir / "stats.csv");
+  ASSERT_EQ(stats.rows(), static_cast<std::size_t>(v.steps + 1)) << v.name;
   double survival = 0;
-  int rows = 0;
-  for (std::string row; std::getline(csv, row);) {
-    std::stringstream cells(row);
-    std::string cell;
-    for (std::size_t c = 0; c <= column; ++c) std::getline(cells, cell, ',');
-    if (rows++ > 0) survival += std::stod(cell);  // row 0: the initial adaptation
-  }
-  ASSERT_EQ(rows, v.steps + 1) << v.name;
+  for (std::size_t k = 1; k < stats.rows(); ++k)  // row 0: the initial adaptation
+    survival += stats.number(k, "kept_fraction");
   survival /= v.steps;
   EXPECT_GE(survival, 0.9) << v.name << ": mean vertex survival";
   if (v.max_rebuilds >= 0) {
