@@ -130,7 +130,8 @@ bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& f
   // every frame of that sweep stays above 10 degrees, with predictive and full sampling. With
   // steps of a third instead, full sampling's last frame kept 15 folded faces, after a sub-step
   // of 155 splits (5x the usual) around vertices the search had moved (one trajectory each).
-  const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  // n is a unit normal (surface_normal_at), so t1, t2, n are orthonormal.
+  const Vec3 t1 = n.unitOrthogonal();
   const Vec3 t2 = n.cross(t1);
   for (double fraction : {0.1, 1.0 / 30.0, 0.01}) {
     double best = before;
