@@ -222,7 +222,7 @@ TEST(FoldScreenAround, SameVerdictsAsTheFullScreen) {
 // reported (as a sliver, or as folded, which takes precedence), and every reported sliver is
 // below it; away from the floor by 1e-9 degrees, where rounding could go either way. On the
 // damaged mesh at two sizes: below kParallelMin faces the screen's passes run fused, above it
-// in parallel.
+// in parallel (the other FoldScreen tests' meshes are all above it).
 TEST(FoldScreen, SliversAreTheFacesBelowTheFloorMeasuredIndependently) {
   MovedEllipsoid s;
   for (int levels : {3, 4}) {
@@ -252,6 +252,25 @@ TEST(FoldScreen, SliversAreTheFacesBelowTheFloorMeasuredIndependently) {
       }
     }
     EXPECT_GT(below, 10u) << levels;
+    // Each face reported folded is turned against grad F at a corner (value_gradient, not the
+    // screen's code), and the screen around every vertex finds the same lists on either path.
+    for (Face f : folded) {
+      const auto v = mesh.vertices(f);
+      const Vec3 n = (mesh.position(v[1]) - mesh.position(v[0]))
+                         .cross(mesh.position(v[2]) - mesh.position(v[0]));
+      bool against = false;
+      for (Vertex u : v) {
+        Vec3 g;
+        s.value_gradient(mesh.position(u), g);
+        against |= n.dot(g) <= 0;
+      }
+      EXPECT_TRUE(against) << "face " << f.idx << " reported folded";
+    }
+    EXPECT_GT(folded.size(), 10u) << levels;
+    std::vector<Face> folded_around, slivers_around;
+    find_bad_faces_around(mesh, s, 10.0, mesh.live_vertices(), folded_around, slivers_around);
+    EXPECT_EQ(folded_around, folded) << levels;
+    EXPECT_EQ(slivers_around, slivers) << levels;
     const bool parallel = mesh.face_capacity() > static_cast<std::size_t>(kParallelMin);
     EXPECT_EQ(parallel, levels == 4) << mesh.face_capacity();
   }
