@@ -595,9 +595,8 @@ bool Adapter::weld_allowed(const DiamondChange& plan, double error, double curre
 
 bool Adapter::pathological(Face f) const {
   const auto v = mesh_.vertices(f);
-  const auto range =
-      angle_range_deg(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]));
-  return range[0] < options_.angle_guard.min_deg || range[1] > options_.angle_guard.max_deg;
+  return !angles_within(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]),
+                        options_.angle_guard.min_deg, options_.angle_guard.max_deg);
 }
 
 // The edge to split is the face's refinement edge; its incident angles are those of the
@@ -647,8 +646,10 @@ void Adapter::weld_pass() {
     measure_star(plan);
     return weld_key(plan, ambiguous);
   };
-  std::vector<double> key(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
-  std::vector<std::uint8_t> ambiguous(static_cast<std::size_t>(n), 0);
+  std::vector<double>& key = weld_keys_;
+  std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
+  key.assign(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
+  ambiguous.assign(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;

@@ -172,6 +172,10 @@ class Adapter {
   SampleStore samples_;
   ErrorPredictor predictor_;
   std::vector<Face> to_measure_;  // sampling()'s list, reused step to step
+  // weld_pass()'s per-vertex keys and ambiguity flags, reused step to step (above 4 MB a
+  // fresh block is fresh pages: allocator_policy.h).
+  std::vector<double> weld_keys_;
+  std::vector<std::uint8_t> weld_ambiguous_;
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
