@@ -35,8 +35,11 @@ void Adapter::watch_topology() {
   topology_.reset();
   const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface_);
   if (!options_.topology_events || !implicit || !implicit->may_change_topology()) return;
-  topology_ = std::make_unique<TopologyMonitor>();
+  topology_ = std::make_unique<TopologyMonitor>(ContourBaseOptions{}, options_.threshold);
   topology_->reset(*implicit, mesh_);
+  // Fixed critical points none of which matters at T (mri with its sulci closed): the surface
+  // keeps its topology, and the run what it was without a monitor.
+  if (topology_->idle()) topology_.reset();
 }
 
 void Adapter::check_topology() {

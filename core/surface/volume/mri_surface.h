@@ -6,8 +6,10 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/surface/surface.h"
@@ -49,7 +51,7 @@ inline constexpr const char* kClosingHelp =
     "narrower than the layer's triangles, which refinement cannot follow; give 2 to keep the "
     "most sulci";
 
-class MriSurface final : public ImplicitSurface {
+class MriSurface final : public ImplicitSurface, public FixedCriticalField {
  public:
   static constexpr const char* kName = "mri";
   static constexpr const char* kIntensity = "intensity";
@@ -77,6 +79,16 @@ class MriSurface final : public ImplicitSurface {
   }
   Mat3 hessian(const Vec3& p) const override;
 
+  // F = D + d(t): the layers change topology only where d(t) passes -D at one of D's critical
+  // points, fixed in space (issue 16). The adapter watches them when some of those that matter
+  // at its threshold lie within [0, depth_max]; the cuberille or a contour of F re-bases the
+  // mesh when a local repair cannot be made.
+  bool may_change_topology() const override { return true; }
+  // D's critical points with -D in [0, depth_max], pairs of persistence below `resolution`
+  // cancelled; kept per resolution and depth_max until the distance changes.
+  const FixedCriticalPoints& fixed_critical_points(double resolution) const override;
+  double time_offset() const override { return depth(); }
+
   // "intensity": the T1 intensity (trilinear), what the layers are coloured by.
   std::vector<std::string> point_quantities() const override { return {kIntensity}; }
   double point_quantity(const std::string& name, const Vec3& p) const override;
@@ -102,6 +114,7 @@ class MriSurface final : public ImplicitSurface {
 
   MriLayers layers_;
   double depth_max_;
+  mutable std::map<std::pair<double, double>, FixedCriticalPoints> critical_points_;
   ProgressCallback progress_;
   std::shared_ptr<const VolumeImage> image_;
 };
