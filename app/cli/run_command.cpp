@@ -339,12 +339,13 @@ void fail_if_left_behind(const RunOptions& o, const StepStats& s) {
                    "--no-geometric on a static interval, e.g. --steps 0 or --t1 equal to --t0)");
 }
 
-// A surface whose critical points are fixed (mri, issue 16): how many the run watches, on
-// stderr whatever --quiet says, like the events they announce.
+// A surface whose critical points are fixed (mri, issue 16): how many the run watches, when
+// any, on stderr whatever --quiet says, like the events they announce.
 void log_fixed_critical_points(std::ostream& log, const Surface& surface, double threshold) {
   const auto* field = dynamic_cast<const FixedCriticalField*>(&surface);
   if (!field) return;
   const FixedCriticalPoints& p = field->fixed_critical_points(threshold);
+  if (p.points.empty()) return;  // no monitor is kept: the run is what it was
   log << "topology: " << p.points.size() << " critical point(s) of F can change the layer's "
       << "topology in this run (" << p.candidates << " found, " << p.cancelled
       << " cancelled in pairs of persistence below T; " << format_significant(p.seconds, 2)
