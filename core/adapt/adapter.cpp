@@ -97,6 +97,7 @@ class Adapter::Tracker final : public MeshListener {
     renumber_handles(rings_changed, r.vertex);
     Adapter& a = adapter_;
     // Vertices born since these were recorded have no entry: NaN, never a position.
+    a.carried_valid_ = false;
     for (std::vector<Vec3>* points : {&a.start_positions_, &a.rest_points_, &a.displacement_}) {
       points->resize(r.vertex.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
       renumber_elements(*points, r.vertex, r.n_vertices);
@@ -287,6 +288,7 @@ const StepStats& Adapter::step(double t) {
 }
 
 int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
+  small_motion_ = false;
   if (!options_.geometric || !options_.substeps.enabled || from == to) return 1;
   const bool carry = probe_.follows_material();
   if (carry) record_rest_points();
@@ -302,6 +304,7 @@ int Adapter::plan_substeps(double from, double to, bool& rest_points_planned) {
   starts_planned_ = implicit && e.substeps == 1 && !topology_;
   stats_.substeps = e.substeps;
   stats_.motion_strain = e.strain;
+  small_motion_ = e.substeps == 1 && e.strain <= options_.fold_repair.prescreen_above_strain;
   return e.substeps;
 }
 
@@ -316,12 +319,14 @@ bool Adapter::advance(double t, bool rest_points_fresh) {
   if (correct) normal_correction();
   seconds.project += clock.lap();
   if (correct) tangential_correction();
-  if (correct) repair(options_.fold_repair);
+  // A small motion in one go is screened once, before publishing (prescreen_above_strain).
+  const bool screen = correct && !(small_motion_ && !topology_);
+  if (screen) repair(options_.fold_repair);
   if (correct && topology_) rebuild_if_folded();
   // From a clean screen on, only splits and welds change the mesh before the frame is
   // published (no vertex moves): publish_repaired() looks again only where they did.
   tracker_->rings_changed.clear();
-  tracker_->recording_ring_changes = correct && !topology_ && options_.fold_repair.enabled &&
+  tracker_->recording_ring_changes = screen && !topology_ && options_.fold_repair.enabled &&
                                      stats_.folds_left == 0 && stats_.slivers_left == 0;
   seconds.smooth += clock.lap();
   sampling();
@@ -350,9 +355,13 @@ void Adapter::publish_repaired() {
   Stopwatch clock;
   std::vector<Face>& folded = bad_faces_[0];
   std::vector<Face>& slivers = bad_faces_[1];
-  if (tracker_->recording_ring_changes && options_.fold_repair.screen_changed_only)
+  // Both screens give the same verdicts; the one around changed rings walks each ring and sums
+  // its corners' normals afresh (~25x the full screen's cost per face, measured on twist at
+  // 1.5-3k faces): worth it only when few rings changed, as at 10^6 triangles.
+  const bool few_changed = tracker_->rings_changed.size() * 8 <= mesh_.n_faces();
+  if (tracker_->recording_ring_changes && options_.fold_repair.screen_changed_only && few_changed)
     find_bad_faces_around(mesh_, surface_, options_.fold_repair.min_angle_deg,
-                          tracker_->rings_changed, folded, slivers);
+                          tracker_->rings_changed, folded, slivers, &fold_screen_);
   else
     find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers,
                    &fold_screen_);
@@ -445,6 +454,9 @@ void Adapter::normal_correction() {
       probe_.parametric() ? nullptr : &static_cast<const ImplicitSurface&>(surface_);
   const bool keep = implicit && options_.sampling == Sampling::kPredictive;
   if (keep) predictor_.grow_for(mesh_);
+  // One sub-step only: the slide is measured over the whole step (ErrorPredictor::begin_step).
+  carried_valid_ = keep && carry && stats_.substeps <= 1;
+  if (carried_valid_) carried_.resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
@@ -452,6 +464,7 @@ void Adapter::normal_correction() {
     const auto k = static_cast<std::size_t>(i);
     if (keep) {
       if (carry && !planned) probe_.carry_vertex(mesh_, v, rest_points_[k]);
+      if (carried_valid_) carried_[k] = planned ? projection_starts_[k].point : mesh_.position(v);
       const ProjectionResult r = planned ? project_to_surface(*implicit, projection_starts_[k])
                                          : project_to_surface(*implicit, mesh_.position(v));
       mesh_.position(v) = r.point;
@@ -506,7 +519,9 @@ void Adapter::sampling() {
     stats_.faces_measured += mesh_.n_faces();
     return;
   }
-  predictor_.begin_step(mesh_, probe_, start_positions_, step_, surface_epoch_);
+  predictor_.begin_step(mesh_, probe_, start_positions_, step_, surface_epoch_,
+                        carried_valid_ ? &carried_ : nullptr);
+  carried_valid_ = false;
   stats_.evaluations_reused += predictor_.reused_evaluations();
   predictor_.select(
       mesh_, probe_, samples_,

@@ -92,6 +92,9 @@ class Adapter {
   // After plan_substeps() chose one sub-step: its evaluations at the step's end time are the
   // normal correction's first Newton iterates (projection_starts_).
   bool starts_planned_ = false;
+  // plan_substeps() found the step small enough to skip the screen after correction
+  // (FoldRepairOptions::prescreen_above_strain).
+  bool small_motion_ = false;
   void repair(const FoldRepairOptions& options);
   // Checks the frame about to be published for folds and slivers; repairs and re-measures.
   void publish_repaired();
@@ -188,6 +191,11 @@ class Adapter {
   // Rest-space points of the vertices before the surface's time changed (surfaces with a
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
+  // Where each vertex's material point went this step, before the projection and smoothing
+  // moved it on (predictive sampling on a surface with a rest map: ErrorPredictor's slide);
+  // valid when carried_valid_.
+  std::vector<Vec3> carried_;
+  bool carried_valid_ = false;
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started

@@ -20,6 +20,20 @@ namespace {
 // 0.245, sinc 0.242, sphere 0.192: a margin of 4 on the largest.
 constexpr double kSafety = 5.0;
 
+// A face whose edges all changed by a factor within 1 +- s, on a surface whose curvatures did
+// not change, reads up to (1 + s)^2 of its error (the residual grows as the square of the
+// face's size at a given curvature): 2 s of it, to first order. The vertices' data do not
+// see this where the face stretches across a curvature jump (a C1 seam: the capsule's
+// cylinder meeting its caps, bent by capsule-bend): without this term, skipped faces on the
+// seams' inner side used 0.99 of their bound there (1.29 with kMaxTravelFraction 0.1),
+// with it 0.25 (PredictiveAnimation/capsule_bend, T = 0.002). Added only in steps whose
+// vertices were carried with the material (a rest map): there the seam stays under the same
+// faces and the slide guard does not see the face stretching across it. Without a rest map
+// a seam moves relative to the corners, which the slide guard (the whole move) measures;
+// applied there too, the term measured the twist's sheared sides needlessly
+// (21% -> 28% of its faces, Cli.SamplingOptionChoosesWhatIsMeasured above 0.5).
+constexpr double kStrainGain = 2.0;
+
 // Over the triangle, max of b_i b_j |b_j - b_i| on one edge's term (at 2 t - 1 = 1 / sqrt 3),
 // and of their sum over the three edges (numerically, on a 600-point lattice: 0.11756).
 constexpr double kCubicEdge = 0.0962250448649376;  // 1 / (6 sqrt 3)
@@ -44,10 +58,19 @@ Change change(const float (&now)[3][3], const float (&then)[3][3]) {
   return out;
 }
 
+// The largest relative change of an edge's length.
+double strain(const float (&now)[3], const float (&then)[3]) {
+  double out = 0.0;
+  for (int e = 0; e < 3; ++e)
+    out = std::max(out, std::abs(static_cast<double>(now[e]) / then[e] - 1.0));
+  return out;
+}
+
 }  // namespace
 
 void ErrorPredictor::invalidate() {
   std::fill(has_reference_.begin(), has_reference_.end(), 0);
+  radius_.fill(std::numeric_limits<double>::infinity());
 }
 
 void ErrorPredictor::grow(const Mesh48& mesh) {
@@ -55,12 +78,14 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
     frame_.resize(mesh.vertex_capacity());
     frame_step_.resize(mesh.vertex_capacity(), 0);
     moved_.resize(mesh.vertex_capacity(), 0.0f);
+    slid_.resize(mesh.vertex_capacity(), 0.0f);
     evaluated_.resize(mesh.vertex_capacity());
   }
   if (reference_.size() < mesh.face_capacity()) {
     reference_.resize(mesh.face_capacity());
     has_reference_.resize(mesh.face_capacity(), 0);
     bound_.resize(mesh.face_capacity(), 0.0);
+    travel_.resize(mesh.face_capacity(), 0.0f);
     for (std::size_t f = rotation_.size(); f < mesh.face_capacity(); ++f)
       rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
   }
@@ -91,7 +116,7 @@ void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& prob
 
 void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
                                 const std::vector<Vec3>& start_positions, std::uint64_t step,
-                                std::uint64_t epoch) {
+                                std::uint64_t epoch, const std::vector<Vec3>* material_positions) {
   step_ = step;
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
@@ -104,11 +129,17 @@ void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
     reused += epoch != 0 && e.epoch == epoch && e.point == mesh.position(v);
     refresh_vertex(mesh, probe, v, epoch);
     const auto k = static_cast<std::size_t>(i);
-    moved_[k] = k < start_positions.size()
-                    ? static_cast<float>((mesh.position(v) - start_positions[k]).norm())
-                    : std::numeric_limits<float>::infinity();
+    // A vertex without a start (born this step, or NaN after a renumbering): infinitely far.
+    const auto distance = [&](const std::vector<Vec3>& from) {
+      const auto d = k < from.size() ? static_cast<float>((mesh.position(v) - from[k]).norm())
+                                     : std::numeric_limits<float>::infinity();
+      return d <= std::numeric_limits<float>::max() ? d : std::numeric_limits<float>::infinity();
+    };
+    moved_[k] = distance(start_positions);
+    slid_[k] = material_positions ? distance(*material_positions) : moved_[k];
   }
   reused_evaluations_ = probe.parametric() ? 0 : reused;
+  carried_ = material_positions != nullptr;
 }
 
 ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
@@ -133,6 +164,7 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
     }
     // r(t) = t (1 - t) (c + d (2 t - 1)) has exactly these slopes.
     const Vec3 c = 0.5 * (start - end), d = -0.5 * (start + end);
+    out.length[e] = static_cast<float>(edge.norm());
     for (int k = 0; k < 3; ++k) {
       out.c[e][k] = static_cast<float>(c[k]);
       out.d[e][k] = static_cast<float>(d[k]);
@@ -141,15 +173,30 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
   return out;
 }
 
-bool ErrorPredictor::moved_too_far(const Mesh48& mesh, Face f) const {
+double ErrorPredictor::edge_curvature(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const {
   const auto v = mesh.vertices(f);
-  double shortest2 = std::numeric_limits<double>::infinity(), moved = 0.0;
-  for (int e = 0; e < 3; ++e) {
-    shortest2 = std::min(
-        shortest2, (mesh.position(v[(e + 1) % 3]) - mesh.position(v[(e + 2) % 3])).squaredNorm());
-    moved = std::max(moved, static_cast<double>(moved_[v[e].idx]));
+  Vec3 normal[3];
+  for (int i = 0; i < 3; ++i) {
+    const VertexFrame& frame = frame_[v[i].idx];
+    if (probe.parametric()) {
+      const Vec3 n = frame.a.cross(frame.b);
+      const double length = n.norm();
+      normal[i] = length > 0 ? Vec3(n / length) : Vec3::Zero();
+    } else {
+      normal[i] = frame.a;
+    }
   }
-  return !(moved * moved <= kMaxMoveFraction * kMaxMoveFraction * shortest2);
+  // Along a normal section of radius rho, the chord and the unit normals' difference are
+  // 2 rho sin(phi / 2) and 2 sin(phi / 2): their ratio is exactly 1 / rho. A normal that also
+  // turns about the edge (geodesic torsion) only makes the estimate larger.
+  double largest = 0.0;
+  for (int e = 0; e < 3; ++e) {
+    const Vertex i = v[(e + 1) % 3], j = v[(e + 2) % 3];
+    const double chord = (mesh.position(j) - mesh.position(i)).norm();
+    const double turn = (normal[(e + 2) % 3] - normal[(e + 1) % 3]).norm();
+    if (chord > 0) largest = std::max(largest, turn / chord);
+  }
+  return largest;
 }
 
 void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
@@ -160,13 +207,35 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   flags_.assign(static_cast<std::size_t>(n), 0);
   const std::uint64_t phase = step_ % kRotation;
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
+  // The strain term covers faces carried with the material across a seam; a face that moved
+  // over the surface instead is covered by the slide guard (the whole move counts as slide).
+  const double strain_gain = carried_ ? kStrainGain : 0.0;
+  double curvature = 0.0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : curvature) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
     const auto k = static_cast<std::size_t>(i);
-    bool needed = !has_reference_[k] || !samples.measured(f) || samples.densified(f) ||
-                  rotation_[k] == phase || moved_too_far(mesh, f);
+    curvature = std::max(curvature, edge_curvature(mesh, probe, f));
+    const auto v = mesh.vertices(f);
+    float moved = 0.0f, slid = 0.0f, shortest2 = std::numeric_limits<float>::infinity();
+    for (int e = 0; e < 3; ++e) {
+      moved = std::max(moved, moved_[v[e].idx]);
+      slid = std::max(slid, slid_[v[e].idx]);
+      shortest2 = std::min(
+          shortest2,
+          static_cast<float>(
+              (mesh.position(v[(e + 1) % 3]) - mesh.position(v[(e + 2) % 3])).squaredNorm()));
+    }
+    travel_[k] += moved;  // reset by record()
+    const bool slid_far =
+        !(slid * slid <= static_cast<float>(kMaxSlideFraction * kMaxSlideFraction) * shortest2);
+    bool needed =
+        !has_reference_[k] || !samples.measured(f) || samples.densified(f) || rotation_[k] == phase;
+    if (!needed && slid_far) {
+      flags_[k] = 2;  // measured for its slide alone (guarded())
+      continue;
+    }
     if (!needed) {
       // The face's frames are this step's (begin_step), its reference its last measurement's.
       const Coefficients now = coefficients(mesh, probe, f);
@@ -174,9 +243,11 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       const Change cubic = change(now.d, reference_[k].d);
       double offset = 0.0;
       for (Vertex v : mesh.vertices(f)) offset = std::max(offset, frame_[v.idx].offset);
+      const double stretch = strain(now.length, reference_[k].length);
       const double residual =
           kSafety * (std::min(quadratic.largest / 3.0, quadratic.sum / 4.0) +
-                     std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) + offset);
+                     std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) + offset +
+                     strain_gain * stretch * samples.face_error(f));
       // The reading follows the residual at the samples and, near the split bound, on the
       // edges (SampleStore::set_peak_search).
       bound_[k] = residual * samples.reading_gain(f, residual);
@@ -184,12 +255,23 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
     }
     flags_[k] = needed;
   }
+  // The smallest radius over the steps any reference can date from (kRotation): the shape
+  // a face was measured on counts as much as today's.
+  radius_[phase] = curvature > 0 ? 1.0 / curvature : std::numeric_limits<double>::infinity();
+  curvature_radius_ = *std::min_element(radius_.begin(), radius_.end());
+  const auto limit = static_cast<float>(kMaxTravelFraction * curvature_radius_);
   measure.clear();
   skipped_ = 0;
+  guarded_ = 0;
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
-    if (flags_[static_cast<std::size_t>(i)])
+    const auto k = static_cast<std::size_t>(i);
+    if (flags_[k] == 2 || (!flags_[k] && !(travel_[k] <= limit))) {
+      flags_[k] = 1;
+      ++guarded_;
+    }
+    if (flags_[k])
       measure.push_back(f);
     else
       ++skipped_;
@@ -205,10 +287,12 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(frame_, r.vertex, r.n_vertices);
   renumber_elements(frame_step_, r.vertex, r.n_vertices);
   renumber_elements(moved_, r.vertex, r.n_vertices);
+  renumber_elements(slid_, r.vertex, r.n_vertices);
   renumber_elements(evaluated_, r.vertex, r.n_vertices);
   renumber_elements(reference_, r.face, r.n_faces);
   renumber_elements(has_reference_, r.face, r.n_faces);
   renumber_elements(bound_, r.face, r.n_faces);
+  renumber_elements(travel_, r.face, r.n_faces);
   for (std::size_t f = rotation_.size(); f < r.face.size(); ++f)  // slots not seen yet
     rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
   renumber_elements(rotation_, r.face, r.n_faces);
@@ -232,6 +316,7 @@ void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,
     reference_[f.idx] = coefficients(mesh, probe, f);
     has_reference_[f.idx] = 1;
     bound_[f.idx] = 0.0;
+    travel_[f.idx] = 0.0f;
   }
 }
 

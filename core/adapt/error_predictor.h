@@ -41,8 +41,36 @@
 //   - The vertices lie on the surface (normal correction). Where a projection left a vertex
 //     off it, that vertex's distance to the surface is added to the bound (the residual is
 //     then no longer zero there; it moves the face's error by at most that much).
-//   - The step is small against the triangle: a face with a vertex that moved more than
-//     kMaxMoveFraction of its shortest edge this step is measured (a sudden jump in time).
+//   - The change since the reference is small against the scale on which the surface's shape
+//     changes, so that every term of the residual (those the vertices see and those they do
+//     not) changed linearly in the face's displacement s relative to the surface, and the
+//     ratio of the unseen to the seen changes is the ratio of the surface's derivatives at
+//     the face, which kSafety covers (calibrated: error_predictor.cpp). The remainder of that
+//     linearisation is of relative size s / L, L the length over which the surface's derivatives
+//     change; for a surface smooth at the scale of its curvature radius, L ~ rho. The triangle's
+//     size h does not enter: it sets each term's size (h^2 c'', h^3 d'', h^3 e, h^4 ...) alike now
+//     and at the reference. So a face is measured when its corners' summed moves since its
+//     reference measurement exceed kMaxTravelFraction of the smallest curvature radius the
+//     mesh's vertex normals show this step (curvature_radius(): one number for the whole mesh,
+//     so that no flat face is trusted next to a curved region sliding towards it). This is
+//     what catches a sudden jump in time. (A guard comparing one step's move with a quarter
+//     of the face's shortest edge, as this one once was: at 10^6 triangles a step's motion tripped
+//     it for 55% of the faces, though it moved them by ~1% of the curvature radius.)
+//   - Where the surface's curvature jumps (a C1 seam: the capsule's cylinder meeting its
+//     caps) the shape changes over no length at all: neither the linearisation above nor the
+//     corners' data need see what happens inside the face. Two things change the residual
+//     there. (a) The face stretching across the seam: a face whose edges changed by a factor
+//     within 1 +- s since its reference reads up to (1 + s)^2 of its error on the same
+//     curvatures, so 2 s times its last error is added to the bound where the vertices were
+//     carried with the material this step (kStrainGain, error_predictor.cpp). Without it,
+//     capsule-bend's skipped faces on the inner side of its seams used 0.99 of their bound
+//     (PredictiveAnimation, T = 0.002), with it 0.25. (b) A seam sliding across the face changes
+//     its residual by ~ (slide / h) of its size: a face with a corner that slid over the surface by
+//     more than kMaxSlideFraction of its shortest edge this step is measured (on the slide, not
+//     the whole move). The slide is the move relative to the surface's material
+//     where the surface has a rest map (capsule-bend: the vertices are carried with it, and only
+//     the correction and the smoothing slide them; the seam stays under the same faces), else the
+//     whole move.
 //   - Stochastic sampling and drift beyond all of the above: a rotating 1/kRotation of all
 //     faces is measured every step, so no face goes unmeasured for more than kRotation steps.
 // Faces whose samples changed (split, weld, new pattern: SampleStore::measured() false) are
@@ -56,8 +84,10 @@
 // full sampling as long as the assumptions hold.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "core/adapt/sample_store.h"
@@ -69,20 +99,28 @@ namespace dynamesh {
 
 class ErrorPredictor final : public MeshListener {
  public:
-  static constexpr double kMaxMoveFraction = 0.25;
+  // A face whose corners travelled more than this fraction of curvature_radius() since its
+  // reference measurement is measured (the header's "Assumptions").
+  static constexpr double kMaxTravelFraction = 0.25;
+  // A face one of whose corners slid over the surface by more than this fraction of its
+  // shortest edge this step is measured (the header's "Assumptions": curvature jumps).
+  static constexpr double kMaxSlideFraction = 0.25;
   static constexpr std::uint32_t kRotation = 16;
 
   // Forgets every face's reference (e.g. when switching from full sampling).
   void invalidate();
 
   // Start of a step's sampling, after the geometric correction: the vertices' first-order
-  // data at their new places. `start_positions` are the positions at the start of the step.
+  // data at their new places. `start_positions` are the positions at the start of the step;
+  // `material_positions` (surfaces with a rest map, else null), where each vertex's material
+  // point from the start of the step is now: a vertex's slide over the surface is its
+  // distance from it (without one, its whole move counts as slide).
   // Implicit surfaces: a vertex that still sits exactly where note() saw F and grad F
   // evaluated, in the surface state `epoch`, reuses them (the same numbers an evaluation
   // would give: exact).
   void begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
                   const std::vector<Vec3>& start_positions, std::uint64_t step,
-                  std::uint64_t epoch = 0);
+                  std::uint64_t epoch = 0, const std::vector<Vec3>* material_positions = nullptr);
 
   // F and grad F were evaluated at `point` (where vertex v now is) in the surface state
   // `epoch` (> 0), e.g. by the projection that put it there. Thread-safe for distinct
@@ -108,6 +146,11 @@ class ErrorPredictor final : public MeshListener {
   }
 
   std::size_t skipped() const { return skipped_; }
+  // Faces the last select() measured only because their corners travelled or slid too far.
+  std::size_t guarded() const { return guarded_; }
+  // The smallest curvature radius the last select() saw: over every face, the shortest edge
+  // length over the turn of the unit normal between its ends (a chord estimate of 1/|k_n|).
+  double curvature_radius() const { return curvature_radius_; }
   // Vertices whose F and grad F the last begin_step took from note() instead of evaluating.
   std::size_t reused_evaluations() const { return reused_evaluations_; }
 
@@ -129,18 +172,21 @@ class ErrorPredictor final : public MeshListener {
     // along it, r(t) = t (1 - t) (c + d (2 t - 1)): c quadratic, d cubic.
     float c[3][3];
     float d[3][3];
+    float length[3];  // the edges' lengths (the face's strain since its reference)
   };
 
   void grow(const Mesh48& mesh);
   void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
                       std::uint64_t epoch = 0);
   Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
-  bool moved_too_far(const Mesh48& mesh, Face f) const;
+  // The largest normal curvature along the face's edges (chord estimate), from the frames.
+  double edge_curvature(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
 
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;
   std::vector<std::uint64_t> frame_step_;   // step each frame was computed at (+1; 0 = never)
   std::vector<float> moved_;                // each vertex's displacement this step
+  std::vector<float> slid_;                 // and its slide over the surface (begin_step)
   std::vector<PointEvaluation> evaluated_;  // note()
   std::size_t reused_evaluations_ = 0;
   std::vector<Coefficients> reference_;
@@ -149,8 +195,20 @@ class ErrorPredictor final : public MeshListener {
   // Each face's turn in the rotation (id % kRotation when its slot was made): kept through a
   // renumbering, so that no face waits more than kRotation steps across one either.
   std::vector<std::uint8_t> rotation_;
+  // Per face, its corners' largest summed move since its reference measurement (an upper
+  // bound of how far any corner got from where it was then).
+  std::vector<float> travel_;
   std::vector<std::uint8_t> flags_;  // select's scratch
-  std::size_t skipped_ = 0;
+  std::size_t skipped_ = 0, guarded_ = 0;
+  double curvature_radius_ = std::numeric_limits<double>::infinity();
+  bool carried_ = false;  // begin_step had the material positions (the strain term applies)
+  // Each of the last kRotation steps' smallest radius (by step % kRotation).
+  std::array<double, kRotation> radius_ = filled_radii();
+  static std::array<double, kRotation> filled_radii() {
+    std::array<double, kRotation> r;
+    r.fill(std::numeric_limits<double>::infinity());
+    return r;
+  }
 };
 
 }  // namespace dynamesh

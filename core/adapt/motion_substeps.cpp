@@ -27,23 +27,25 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
                                  const SubstepOptions& options) {
   MotionEstimate e;
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  double strain = 0.0;
+  double strain2 = 0.0;  // the largest squared strain: no square root or division per edge
   // Every interior edge is seen from both faces: the bound is a maximum, so that is harmless
   // and cheaper than deduplicating.
-#pragma omp parallel for schedule(static) reduction(max : strain) if (n > kParallelMin)
+#pragma omp parallel for schedule(static) reduction(max : strain2) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
     const auto v = mesh.vertices(f);
     for (int j = 0; j < 3; ++j) {
       const Vertex a = v[static_cast<std::size_t>(j)], b = v[static_cast<std::size_t>((j + 1) % 3)];
-      const double length = (mesh.position(a) - mesh.position(b)).norm();
-      if (!(length > 0)) continue;
-      const Vec3& da = displacement[a.idx];
-      const Vec3& db = displacement[b.idx];
-      strain = std::max(strain, (da - db).norm() / length);
+      const double length2 = (mesh.position(a) - mesh.position(b)).squaredNorm();
+      const double moved2 = (displacement[a.idx] - displacement[b.idx]).squaredNorm();
+      if (!(length2 > 0)) continue;
+      // strain2 * length2 < moved2 decides without a division (false for NaN, ignored as
+      // before); the division only on a new maximum, a few times per pass.
+      if (strain2 * length2 < moved2) strain2 = moved2 / length2;
     }
   }
+  const double strain = std::sqrt(strain2);
   e.strain = strain;
   if (!options.enabled) return e;
   const double need = strain / options.max_strain;

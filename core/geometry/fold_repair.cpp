@@ -26,10 +26,24 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return smallest;
 }
 
-// Whether the triangle's smallest angle is below the angle whose cosine is `cos_limit` (a
-// degenerate triangle is): this runs on every face every step.
+// Whether the triangle's smallest angle is below the angle whose cosine is `cos_limit` > 0
+// (a degenerate triangle is): this runs on every face twice a step, so without a square root
+// or a division. The smallest angle lies between the two longer edges u, v (opposite the
+// shortest); it is below the limit when u.v > cos_limit |u| |v|, i.e. u.v > 0 and
+// (u.v)^2 > cos_limit^2 |u|^2 |v|^2 (smallest_angle_cosine's verdict, to rounding).
 bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
-  return smallest_angle_cosine(a, b, c) > cos_limit;
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  double dot, l1, l2;
+  if (lab <= lbc && lab <= lca) {
+    dot = -ca.dot(bc), l1 = lca, l2 = lbc;  // at c, between c->a and c->b
+  } else if (lbc <= lca) {
+    dot = -ab.dot(ca), l1 = lab, l2 = lca;  // at a
+  } else {
+    dot = -ab.dot(bc), l1 = lab, l2 = lbc;  // at b
+  }
+  if (!(l1 * l2 > 0)) return true;  // degenerate
+  return dot > 0 && dot * dot > cos_limit * cos_limit * l1 * l2;
 }
 
 // Folded against the surface: the face's normal points away from the surface normal at one
@@ -100,14 +114,18 @@ bool relax_vertex(Mesh48& mesh, const Surface& surface, Vertex v, std::size_t& f
 namespace {
 
 // 1 folded, 2 sliver, 0 neither: the screen's verdict on one face, given its normal and its
-// corners' summed (area-weighted) mesh normals and their lengths.
+// corners' summed (area-weighted) mesh normals. A face is suspect when it is degenerate or
+// turned more than 60 degrees from a corner's mesh normal N: fn.N <= |fn| |N| / 2, tested as
+// fn.N <= 0 or 4 (fn.N)^2 <= |fn|^2 |N|^2 (no square root).
 std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f, const Vec3& fn,
-                     const Vec3* corner_normal, const double* corner_norm, double cos_limit) {
-  const double half_norm = 0.5 * fn.norm();
+                     const Vec3* corner_normal, double cos_limit) {
+  const double fn2 = fn.squaredNorm();
   const auto v = mesh.vertices(f);
-  bool suspect = !(fn.squaredNorm() > 0);
-  for (int c = 0; c < 3; ++c)
-    suspect = suspect || fn.dot(corner_normal[c]) <= half_norm * corner_norm[c];
+  bool suspect = !(fn2 > 0);
+  for (int c = 0; c < 3 && !suspect; ++c) {
+    const double d = fn.dot(corner_normal[c]);
+    suspect = d <= 0 || 4.0 * d * d <= fn2 * corner_normal[c].squaredNorm();
+  }
   if (suspect && folded_against_surface(mesh, surface, f)) return 1;
   if (below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit))
     return 2;
@@ -127,7 +145,7 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   // than 60 degrees; a smooth adapted mesh bends far less between neighbours), or below the
   // angle floor. Only those evaluate the surface.
   // Each face's normal once (in parallel), summed into its corners in face order (the sums,
-  // hence the verdicts, are those of a serial pass), each vertex normal's length once.
+  // hence the verdicts, are those of a serial pass).
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   const auto nv = static_cast<std::int64_t>(mesh.vertex_capacity());
   b.normal.resize(static_cast<std::size_t>(n));
@@ -143,11 +161,6 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     for (Vertex v : mesh.vertices(f))
       b.vertex_normal[v.idx] += b.normal[static_cast<std::size_t>(i)];
   }
-  b.vertex_norm.resize(static_cast<std::size_t>(nv));
-#pragma omp parallel for schedule(static) if (nv > kParallelMin)
-  for (std::int64_t i = 0; i < nv; ++i)
-    b.vertex_norm[static_cast<std::size_t>(i)] =
-        b.vertex_normal[static_cast<std::size_t>(i)].norm();
   const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
   b.kind.assign(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
@@ -157,11 +170,8 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     const auto v = mesh.vertices(f);
     const Vec3 corner_normal[3] = {b.vertex_normal[v[0].idx], b.vertex_normal[v[1].idx],
                                    b.vertex_normal[v[2].idx]};
-    const double corner_norm[3] = {b.vertex_norm[v[0].idx], b.vertex_norm[v[1].idx],
-                                   b.vertex_norm[v[2].idx]};
     b.kind[static_cast<std::size_t>(i)] =
-        verdict(mesh, surface, f, b.normal[static_cast<std::size_t>(i)], corner_normal, corner_norm,
-                cos_limit);
+        verdict(mesh, surface, f, b.normal[static_cast<std::size_t>(i)], corner_normal, cos_limit);
   }
   for (std::int64_t i = 0; i < n; ++i) {
     const auto k = b.kind[static_cast<std::size_t>(i)];
@@ -172,37 +182,62 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
 
 void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
                            const std::vector<Vertex>& vertices, std::vector<Face>& folded,
-                           std::vector<Face>& slivers) {
+                           std::vector<Face>& slivers, FoldScreenBuffers* buffers) {
   folded.clear();
   slivers.clear();
-  // The faces to judge: every live face with a corner in `vertices`, once, in face order.
-  std::vector<Face> faces;
-  for (Vertex v : vertices)
-    if (mesh.is_alive(v))
-      mesh.for_each_corner_around(v, [&](Corner c) { faces.push_back(c.face); });
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  // A corner's mesh normal as find_bad_faces sums it: its faces' normals in face order.
-  std::vector<Face> ring;
+  FoldScreenBuffers local;
+  FoldScreenBuffers& b = buffers ? *buffers : local;
+  // This call's marks: a slot is done when its mark equals `call`. Arrays only grow (new
+  // slots start unmarked); on the counter's wrap every mark is cleared once.
+  if (++b.call == 0) {
+    std::fill(b.face_mark.begin(), b.face_mark.end(), 0u);
+    std::fill(b.vertex_mark.begin(), b.vertex_mark.end(), 0u);
+    b.call = 1;
+  }
+  const std::uint32_t call = b.call;
+  if (b.face_mark.size() < mesh.face_capacity()) b.face_mark.resize(mesh.face_capacity(), 0u);
+  if (b.vertex_mark.size() < mesh.vertex_capacity()) {
+    b.vertex_mark.resize(mesh.vertex_capacity(), 0u);
+    b.vertex_normal.resize(mesh.vertex_capacity());
+  }
+  // A corner's mesh normal as find_bad_faces sums it (its faces' normals in ascending face
+  // order, from zero), once per vertex per call; the ring (a handful of faces) is sorted by
+  // insertion as it is walked.
+  std::vector<Face>& ring = b.ring;
   auto mesh_normal = [&](Vertex v) {
+    if (b.vertex_mark[v.idx] == call) return;
+    b.vertex_mark[v.idx] = call;
     ring.clear();
-    mesh.for_each_corner_around(v, [&](Corner c) { ring.push_back(c.face); });
-    std::sort(ring.begin(), ring.end());
+    mesh.for_each_corner_around(v, [&](Corner c) {
+      ring.push_back(c.face);
+      for (std::size_t k = ring.size() - 1; k > 0 && ring[k] < ring[k - 1]; --k)
+        std::swap(ring[k], ring[k - 1]);
+    });
     Vec3 sum = Vec3::Zero();
     for (Face f : ring) sum += face_normal(mesh, f);
-    return sum;
+    b.vertex_normal[v.idx] = sum;
   };
   const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
-  for (Face f : faces) {
-    const auto v = mesh.vertices(f);
-    const Vec3 corner_normal[3] = {mesh_normal(v[0]), mesh_normal(v[1]), mesh_normal(v[2])};
-    const double corner_norm[3] = {corner_normal[0].norm(), corner_normal[1].norm(),
-                                   corner_normal[2].norm()};
-    const std::uint8_t k =
-        verdict(mesh, surface, f, face_normal(mesh, f), corner_normal, corner_norm, cos_limit);
-    if (k == 1) folded.push_back(f);
-    if (k == 2) slivers.push_back(f);
+  // Every live face with a corner in `vertices`, once.
+  for (Vertex v : vertices) {
+    if (!mesh.is_alive(v)) continue;
+    mesh.for_each_corner_around(v, [&](Corner c) {
+      const Face f = c.face;
+      if (b.face_mark[f.idx] == call) return;
+      b.face_mark[f.idx] = call;
+      const auto w = mesh.vertices(f);
+      for (Vertex u : w) mesh_normal(u);
+      const Vec3 corner_normal[3] = {b.vertex_normal[w[0].idx], b.vertex_normal[w[1].idx],
+                                     b.vertex_normal[w[2].idx]};
+      const std::uint8_t k =
+          verdict(mesh, surface, f, face_normal(mesh, f), corner_normal, cos_limit);
+      if (k == 1) folded.push_back(f);
+      if (k == 2) slivers.push_back(f);
+    });
   }
+  // In face order, as find_bad_faces lists them (these lists are short: usually empty).
+  std::sort(folded.begin(), folded.end());
+  std::sort(slivers.begin(), slivers.end());
 }
 
 FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options,

@@ -31,6 +31,14 @@ struct FoldRepairOptions {
   // the faces around vertices whose one-ring a split or weld changed since this step's
   // correction found no bad face (find_bad_faces_around: the same verdicts); false: all faces.
   bool screen_changed_only = true;
+  // A step taken in one go whose predicted edge strain (motion_substeps.h) is at most this
+  // skips the screen (and repair) right after its correction: the frame's screen before
+  // publishing then judges every face, and repairs, re-measures and refines as after any
+  // screen, so every published frame is judged as before. Twist at 100 steps has strains of
+  // 0.09-0.12 and no bad face before publishing: one full screen per step instead of two.
+  // Stronger steps (sub-stepped ones have 0.125-0.25 per sub-step) are screened and repaired
+  // before their samples, welds and splits. 0: always screen after correction.
+  double prescreen_above_strain = 0.125;
 };
 
 struct FoldReport {
@@ -47,8 +55,12 @@ struct FoldReport {
 struct FoldScreenBuffers {
   std::vector<Vec3> normal;         // per face slot: its area-weighted normal
   std::vector<Vec3> vertex_normal;  // per vertex slot: its faces' normals, summed in face order
-  std::vector<double> vertex_norm;  // ... and that sum's length
   std::vector<std::uint8_t> kind;   // per face slot: 1 folded, 2 sliver, 0 neither
+  // find_bad_faces_around: a face slot or vertex slot is done in this call when its mark
+  // equals `call` (bumped once per call, so no array is cleared or sorted between calls).
+  std::vector<std::uint32_t> face_mark, vertex_mark;
+  std::uint32_t call = 0;
+  std::vector<Face> ring;  // one vertex's faces, in face order
 };
 
 // Faces that are folded (`folded`) or slivers (`slivers`), checked as described above.
@@ -61,9 +73,10 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
 // corner's mesh normal is summed over its faces in the same order). Where only those
 // vertices' one-rings changed since a find_bad_faces that found no bad face (splits and welds
 // moving no vertex), this is what a full find_bad_faces would find.
+// `vertices` may repeat (each is judged once); `buffers` as for find_bad_faces.
 void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
                            const std::vector<Vertex>& vertices, std::vector<Face>& folded,
-                           std::vector<Face>& slivers);
+                           std::vector<Face>& slivers, FoldScreenBuffers* buffers = nullptr);
 
 FoldReport repair_folds(Mesh48& mesh, const Surface& surface, const FoldRepairOptions& options,
                         FoldScreenBuffers* buffers = nullptr);

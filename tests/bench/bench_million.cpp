@@ -3,10 +3,13 @@
 // t steps by 1e-3 from 0.5 after two warm-up steps (predictive sampling needs references).
 // Reported: the median step's wall-clock and process CPU time (the CPU time is the work,
 // what a shared machine's other load does not inflate) and each phase's median; the share of
-// faces measured, and the share with a vertex that moved more than a quarter of the face's
-// shortest edge this step (ErrorPredictor::kMaxMoveFraction: those are measured whatever
-// their bound says); the steps that renumbered the mesh (AdaptOptions::renumber), the median
-// renumbering time, and the share of scattered faces left (spatial_order.h).
+// faces measured, the share measured only because their corners travelled or slid too far
+// (ErrorPredictor::guarded) and the curvature radius the travel is held against, and the
+// share with a vertex that moved more than a quarter of the face's shortest edge this step
+// (the predictor's former guard, which measured all of those whatever their bound said); the
+// steps that renumbered the mesh (AdaptOptions::renumber), the median renumbering time, and
+// the share of scattered faces left (spatial_order.h).
+//
 // BM_MillionFacePass: why the per-face passes cost what they do at this size. One pass over
 // the adapted mesh's faces as the step's passes are built (read the three corners, a cross
 // product, add it into the three corners' sums: compute_ring_centroids, find_bad_faces),
@@ -75,7 +78,7 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   MillionScene scene(threshold);
   Adapter& adapter = *scene.adapter;
   std::vector<double> wall, cpu, project, smooth, sample, weld, split;
-  double measured = 0, faces = 0, moved = 0, renumbered = 0;
+  double measured = 0, faces = 0, moved = 0, guarded = 0, renumbered = 0;
   std::vector<double> renumber;
   for (auto _ : state) {
     const std::vector<Vec3> before = adapter.mesh().positions();
@@ -92,6 +95,7 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
     renumber.push_back(st.seconds.renumber);
     renumbered += st.renumbered;
     measured += static_cast<double>(st.faces_measured);
+    guarded += static_cast<double>(adapter.predictor().guarded());
     faces += static_cast<double>(st.triangles);
     moved += moved_share(adapter.mesh(), before) * static_cast<double>(st.triangles);
   }
@@ -108,6 +112,8 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   state.counters["scattered_share"] = scattered_face_share(adapter.mesh());
   state.counters["measured_share"] = measured / faces;
   state.counters["moved_share"] = moved / faces;
+  state.counters["guarded_share"] = guarded / faces;
+  state.counters["curvature_radius"] = adapter.predictor().curvature_radius();
 }
 
 BENCHMARK_CAPTURE(BM_MillionTriangleStep, capsule_T9e - 6, 9e-6)

@@ -11,8 +11,10 @@
 // - The memory and time budgets hold while the volume is preprocessed.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "cli_runner.h"
@@ -31,12 +33,38 @@ void make_series(const std::filesystem::path& dir, const std::string& extra = ""
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 }
 
-std::size_t temporary_conversions() {
-  std::size_t n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
-    n += e.path().filename().string().rfind("dynamesh-dicom-", 0) == 0;
-  return n;
-}
+// The CLI converts a DICOM folder in its temporary directory (TMPDIR). Each test that checks
+// that no conversion stays behind gives the CLI a private one: /tmp is shared with the tests
+// that ctest -j runs side by side, whose own conversions come and go while this one runs.
+class PrivateTemporaryDirectory {
+ public:
+  explicit PrivateTemporaryDirectory(const std::filesystem::path& dir) : dir_(dir) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    if (const char* old = std::getenv("TMPDIR")) previous_ = old;
+    setenv("TMPDIR", dir_.c_str(), 1);
+  }
+  ~PrivateTemporaryDirectory() {
+    if (previous_)
+      setenv("TMPDIR", previous_->c_str(), 1);
+    else
+      unsetenv("TMPDIR");
+  }
+  PrivateTemporaryDirectory(const PrivateTemporaryDirectory&) = delete;
+  PrivateTemporaryDirectory& operator=(const PrivateTemporaryDirectory&) = delete;
+
+  // DICOM conversions left in it.
+  std::size_t conversions() const {
+    std::size_t n = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir_))
+      n += e.path().filename().string().rfind("dynamesh-dicom-", 0) == 0;
+    return n;
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::optional<std::string> previous_;
+};
 
 std::size_t lines(const std::string& s) {
   return std::count(s.begin(), s.end(), '\n');
@@ -47,12 +75,12 @@ TEST(MriInputs, DicomSeriesFolderGivesTheBallWhereItIs) {
   std::filesystem::remove_all(dir / "series");
   // Ball of radius 30 mm at LPS (10, 20, 30) = RAS (-10, -20, 30); voxels 2 x 2 x 2.5 mm.
   make_series(dir / "series");
-  const std::size_t before = temporary_conversions();
+  const PrivateTemporaryDirectory tmp(dir / "tmp");
   const std::string mesh = (dir / "ball.ply").string();
   const test::CliRun run = test::run_cli({"--scene", "mri", "--volume", (dir / "series").string(),
                                           "--steps", "0", "--export-final", mesh, "--quiet"});
   ASSERT_EQ(run.status, 0) << run.err;
-  EXPECT_EQ(temporary_conversions(), before);
+  EXPECT_EQ(tmp.conversions(), 0u);
   const test::PlyData ply = test::read_ply(mesh);
   ASSERT_GT(ply.vertices.size(), 100u);
   Vec3 centre = Vec3::Zero();
@@ -76,7 +104,7 @@ TEST(MriInputs, DicomFolderWithoutOrWithTwoSeriesIsRefusedInOneLine) {
   std::filesystem::remove_all(dir / "empty");
   std::filesystem::remove_all(dir / "two");
   std::filesystem::create_directories(dir / "empty");
-  const std::size_t before = temporary_conversions();
+  const PrivateTemporaryDirectory tmp(dir / "tmp");
   const test::CliRun none =
       test::run_cli({"--scene", "mri", "--volume", (dir / "empty").string(), "--quiet"});
   EXPECT_EQ(none.status, 2);
@@ -89,7 +117,7 @@ TEST(MriInputs, DicomFolderWithoutOrWithTwoSeriesIsRefusedInOneLine) {
   EXPECT_EQ(two.status, 2);
   EXPECT_NE(two.err.find("holds 2 DICOM series"), std::string::npos) << two.err;
   EXPECT_EQ(lines(two.err), 1u) << two.err;
-  EXPECT_EQ(temporary_conversions(), before);
+  EXPECT_EQ(tmp.conversions(), 0u);
 }
 
 test::PlyMeasure layer(const std::string& name, const test::Args& extra) {
