@@ -190,9 +190,8 @@ TEST(MriEvents, CliReportsTheDumbbellsSplit) {
             std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("topology: split at t="), std::string::npos) << run.err;
-  // The summary is the last line (CliRun::json starts at the last '{', inside the events).
-  const std::string out = run.out.substr(0, run.out.find_last_not_of('\n') + 1);
-  const auto summary = nlohmann::json::parse(out.substr(out.rfind('\n') + 1));
+  const nlohmann::json& summary = run.json;
+  ASSERT_TRUE(summary.is_object()) << run.out;
   ASSERT_EQ(summary["topology_events"].size(), 1u) << run.err;
   const auto& e = summary["topology_events"][0];
   EXPECT_EQ(e["kind"], "split");
