@@ -200,17 +200,22 @@ TEST(MriEvents, CliReportsTheDumbbellsSplit) {
               0.5 + kDepthMax / steps);
 }
 
+// Colin27's layers from 0 to 20 mm deep, its mask closed by a ball of `closing` mm.
+std::unique_ptr<MriSurface> colin27_layers(double closing) {
+  MriOptions o;
+  o.closing_radius_mm = closing;
+  o.closing_given = true;
+  o.depth_max = 20.0;
+  return make_mri_surface(o);
+}
+
 // Colin27 with its sulci open (closing 0): every time a flood fill of the layers on a 1 mm grid
 // finds more pieces at the next millimetre of depth, a split was reported within that
 // millimetre. Layers only shrink with depth, so a piece (of at least 27 cells: smaller ones are
 // a lobe's last millimetre) can only become two by a split, never by growing.
 TEST(MriEvents, Colin27SplitsAreReportedWhereTheFloodFillSplits) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
-  MriOptions o;
-  o.closing_radius_mm = 0.0;
-  o.closing_given = true;
-  o.depth_max = 20.0;
-  const auto surface = make_mri_surface(o);
+  const auto surface = colin27_layers(0.0);
   const FixedCriticalPoints& p = surface->fixed_critical_points(0.5);
   RecordProperty("candidates", std::to_string(p.candidates));
   RecordProperty("kept", std::to_string(p.points.size()));
@@ -241,11 +246,7 @@ TEST(MriEvents, Colin27SplitsAreReportedWhereTheFloodFillSplits) {
 // 12 and took 2.3 times as long (issue 16, session 10).
 TEST(MriEvents, Colin27HoleNotRepairedLeavesTheStepAsWithoutAMonitor) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
-  MriOptions o;
-  o.closing_radius_mm = 2.0;
-  o.closing_given = true;
-  o.depth_max = 20.0;
-  const auto surface = make_mri_surface(o);
+  const auto surface = colin27_layers(2.0);
   AdaptOptions options;
   options.threshold = 0.5;
   options.epsilon = 0.125;
