@@ -160,6 +160,10 @@ class Adapter {
   // when no base mesh with that topology can be placed on the surface now (the run stops
   // with that reason rather than refine a wrong mesh without end).
   void rebuild_from_base(long euler, long components);
+  // rebuild_from_base, except on a surface with fixed critical points (mri), whose layers no
+  // coarse contour resolves: the mesh then keeps its topology, as it did before events were
+  // watched, with the reason among the step's repair_refusals. True when it was rebuilt.
+  bool rebuild_or_keep(long euler, long components);
   Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();

@@ -784,7 +784,9 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // A matching or a strip that fails at one cut often succeeds at a slightly larger one (the
   // border and the patch's loops both change): a few cuts, the smallest first.
   const double h = options.spacing;
-  std::string why;
+  // Each reason once, in the order met, with the number of attempts that gave it (on Colin27
+  // the same mismatch of loops ended all 48 attempts: one line, not 48 times the same).
+  std::vector<std::pair<std::string, int>> reasons;
   // The patch as coarse as the seam first (local_repair.h), then finer by steps down to the
   // finest spacing. With the mended pairing and the stitching by dynamic programming the
   // first attempt is taken on the examples (blobs, torus pinch); the ladder remains for a
@@ -815,8 +817,18 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
           last = attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most,
                          ladder.islands);
           if (last.repaired) return last;
-          why += (why.empty() ? "" : "; ") + last.why_not;
+          const auto seen = std::find_if(reasons.begin(), reasons.end(), [&](const auto& reason) {
+            return reason.first == last.why_not;
+          });
+          if (seen == reasons.end())
+            reasons.emplace_back(last.why_not, 1);
+          else
+            ++seen->second;
         }
+  std::string why;
+  for (const auto& [reason, attempts] : reasons)
+    why += (why.empty() ? "" : "; ") + reason +
+           (attempts > 1 ? " (" + std::to_string(attempts) + " attempts)" : "");
   last.why_not = why;
   return last;
 }

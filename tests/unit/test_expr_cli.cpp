@@ -28,7 +28,6 @@ struct CliResult {
   std::string out, err;
 };
 
-
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
@@ -41,7 +40,10 @@ CliResult run_cli(const std::vector<std::string>& args) {
       fs::path(DYNAMESH_BINARY_DIR) / "test_scratch" / ("expr_cli_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::string command("cd ");
-  command.append(test::shell_quoted(kSource)).append(" && ").append(test::shell_quoted(kCli)).append(" run");
+  command.append(test::shell_quoted(kSource))
+      .append(" && ")
+      .append(test::shell_quoted(kCli))
+      .append(" run");
   for (const std::string& a : args) command.append(" ").append(test::shell_quoted(a));
   command.append(" > ").append(test::shell_quoted((dir / "out").string()));
   command.append(" 2> ").append(test::shell_quoted((dir / "err").string()));
@@ -127,9 +129,7 @@ std::vector<std::string> example_args(const std::string& name) {
 
 // The JSON summary: the last line of stdout.
 nlohmann::json summary_of(const CliResult& r) {
-  const std::size_t end = r.out.find_last_not_of('\n');
-  const std::size_t start = r.out.rfind('\n', end);
-  return nlohmann::json::parse(r.out.substr(start == std::string::npos ? 0 : start + 1));
+  return test::summary_json(r.out);
 }
 
 fs::path scratch(const std::string& name) {
@@ -147,9 +147,10 @@ TEST(ExprCli, NonStarShapedFormulasNeedNoBaseMesh) {
     std::string formula, bounds;
     long components, euler;
   };
-  for (const Case& c : {Case{"(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09", "-1.5,-1.5,-0.5,1.5,1.5,0.5", 1, 0},
-                        Case{"((x-0.8)^2+y^2+z^2-0.25)*((x+0.8)^2+y^2+z^2-0.25)",
-                             "-1.5,-0.7,-0.7,1.5,0.7,0.7", 2, 4}}) {
+  for (const Case& c :
+       {Case{"(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09", "-1.5,-1.5,-0.5,1.5,1.5,0.5", 1, 0},
+        Case{"((x-0.8)^2+y^2+z^2-0.25)*((x+0.8)^2+y^2+z^2-0.25)", "-1.5,-0.7,-0.7,1.5,0.7,0.7", 2,
+             4}}) {
     const fs::path ply = scratch("shape.ply");
     const CliResult r = run_cli({"--scene", "expr", "--implicit", c.formula, "--bounds", c.bounds,
                                  "--steps", "0", "--quiet", "--export-final", ply.string()});
@@ -212,8 +213,8 @@ TEST(ExprCli, BlobsSceneMergesAndSeparates) {
   ASSERT_TRUE(fs::exists(kCli)) << kCli;
   const fs::path csv = scratch("blobs.csv");
   const fs::path ply = scratch("blobs.ply");
-  const CliResult r = run_cli({"--scene", "blobs", "--steps", "40", "--stats", csv.string(),
-                               "--t1", "0.5", "--export-final", ply.string()});
+  const CliResult r = run_cli({"--scene", "blobs", "--steps", "40", "--stats", csv.string(), "--t1",
+                               "0.5", "--export-final", ply.string()});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("topology: merge at t=0.15"), std::string::npos) << r.err;
   const nlohmann::json json = summary_of(r);
