@@ -177,6 +177,10 @@ void log_topology(std::ostream& log, const StepStats& s) {
         << ", " << e.position.z() << ")\n";
   for (const std::string& why : s.repair_refusals)
     log << "topology: no local repair at step " << s.step << ": " << why << "\n";
+  if (s.splits_held > 0)
+    log << "topology: " << s.splits_held << " split(s) held at step " << s.step
+        << " (no face split beyond depth " << s.held_depth
+        << " since an event the mesh could not follow; max error " << s.max_error << ")\n";
   if (s.local_repairs > 0 && !s.rebuilt)
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
         << " faces near the event replaced, the patch contoured at spacing " << std::setprecision(3)

@@ -403,6 +403,7 @@ void Adapter::rebuild_from_base(long euler, long components) {
   // As initialize() does, but within a step: every vertex is born now (none survives), local
   // repairs of this step included.
   Mesh48 base = mid_run_base_mesh(euler, components);
+  held_depth_ = -1;  // the new mesh has F's topology
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
@@ -603,6 +604,7 @@ bool Adapter::pathological(Face f) const {
 // The edge to split is the face's refinement edge; its incident angles are those of the
 // face and of its neighbour across it (the diamond).
 bool Adapter::split_refused(Face f) const {
+  if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) return true;  // hold_splits
   if (!options_.angle_guard.refuse_splits) return false;
   if (pathological(f)) return true;
   const Face other = mesh_.neighbor(f, 0);
@@ -759,6 +761,7 @@ void Adapter::split_pass(bool initial) {
     }
     if (split_refused(f)) {
       ++stats_.splits_refused;
+      if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) ++stats_.splits_held;
       continue;
     }
     tracker_->touched.clear();
@@ -817,6 +820,7 @@ void Adapter::finish_stats() {
     stats_.survivor_displacement_mean = kept ? sum / static_cast<double>(kept) : 0.0;
     stats_.survivor_displacement_max = worst;
   }
+  stats_.held_depth = held_depth_;
   stats_.projection_failures = tracker_->projection_failures;
   tracker_->projection_failures = 0;
   const PhaseSeconds& p = stats_.seconds;

@@ -164,6 +164,7 @@ class Adapter {
   // coarse contour resolves: the mesh then keeps its topology, as it did before events were
   // watched, with the reason among the step's repair_refusals. True when it was rebuilt.
   bool rebuild_or_keep(long euler, long components);
+  void hold_splits();
   Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
@@ -200,6 +201,7 @@ class Adapter {
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
+  int held_depth_ = -1;               // no split beyond it (hold_splits); -1: none
   std::vector<Face> bad_faces_[2];    // folded faces and slivers (publish_repaired)
   FoldScreenBuffers fold_screen_;     // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;
