@@ -54,6 +54,9 @@ struct AdaptOptions {
   // be repaired locally and a contour has the topology it must take; false keeps the mesh
   // (tests: the path where neither is possible, which holds the splits: Adapter::hold_splits).
   bool topology_rebase = true;
+  // When an event is neither repaired nor rebuilt, hold the splits (Adapter::hold_splits) so
+  // that the refinement ends; false lets it run (tests: a failed repair's own footprint).
+  bool hold_splits_when_unrepaired = true;
   SmoothingOptions smoothing;
   // Rounds of smoothing, measurement and settling (welds and splits until quiet) at the
   // initial time, after the first refinement (Adapter::relax): refined from the base mesh's

@@ -160,6 +160,7 @@ bool Adapter::rebuild_or_keep(long euler, long components) {
 }
 
 void Adapter::hold_splits() {
+  if (!options_.hold_splits_when_unrepaired) return;
   // A mesh that keeps a topology F no longer has cannot meet the bound where they differ: the
   // split queue refined without end towards a surface the mesh cannot reach (the dumbbell's
   // split after motion9, unrepaired: more than 13 minutes, 1.5 GB, and still in step 3; Colin27

@@ -170,6 +170,68 @@ TEST(MriEvents, DumbbellRunReportsTheSplitAndFollowsIt) {
   EXPECT_LT(events[0].position.norm(), 1.0);
 }
 
+// The dumbbell's layers over 8 mm in `steps` steps with the local repair off: what a run does
+// with an event it cannot repair locally. A sample budget of 50,000 triangles stops a runaway
+// refinement (the unrepaired split refined without end: >13 minutes and 1.5 GB in step 3).
+struct UnrepairedRun {
+  std::vector<StepStats> steps;
+  MeshTopologySummary topology;
+};
+UnrepairedRun run_dumbbell_unrepaired(bool rebase, int steps) {
+  const auto surface = make_dumbbell(kDepthMax);
+  AdaptOptions options;
+  options.threshold = 0.5;
+  options.epsilon = 0.125;
+  options.density = 2.0;
+  options.local_topology_repair = false;
+  options.topology_rebase = rebase;
+  options.max_triangles = 50'000;
+  Adapter adapter(*surface, options, default_criteria(MriSurface::kName, 0.0, options, 0.0));
+  adapter.initialize();
+  UnrepairedRun run;
+  for (int s = 1; s <= steps; ++s)
+    run.steps.push_back(adapter.step(static_cast<double>(s) / steps));
+  run.topology = summarize_topology(adapter.mesh());
+  return run;
+}
+
+// The global re-base is the fallback of a layer's event, as of the analytic scenes': the
+// dumbbell ends in two pieces (Euler characteristic 4), counted on the mesh.
+TEST(MriEvents, DumbbellSplitNotRepairedLocallyIsRebuiltFromTheContour) {
+  const UnrepairedRun run = run_dumbbell_unrepaired(/*rebase=*/true, 8);
+  std::size_t rebuilds = 0;
+  for (const StepStats& s : run.steps) {
+    rebuilds += s.rebuilt;
+    EXPECT_FALSE(s.budget_hit) << "step " << s.step;
+  }
+  EXPECT_EQ(rebuilds, 1u);
+  EXPECT_EQ(run.topology, (MeshTopologySummary{4, 2}));
+}
+
+// Neither repaired nor rebuilt: the run still ends, every step under the triangle budget, the
+// splits held from the event on, and the error the mesh cannot meet there is reported, not
+// hidden (above T + eps, where the kept neck spans the gap between the lobes).
+TEST(MriEvents, DumbbellSplitNeitherRepairedNorRebuiltEndsBounded) {
+  const UnrepairedRun run = run_dumbbell_unrepaired(/*rebase=*/false, 8);
+  ASSERT_EQ(run.steps.size(), 8u);
+  std::size_t held = 0, most = 0;
+  double worst = 0;
+  for (const StepStats& s : run.steps) {
+    EXPECT_FALSE(s.budget_hit) << "step " << s.step << ": " << s.triangles << " triangles";
+    EXPECT_FALSE(s.sample_budget_hit) << "step " << s.step;
+    EXPECT_EQ(s.rebuilt, false);
+    held += s.splits_held;
+    most = std::max(most, s.triangles);
+    worst = std::max(worst, s.max_error);
+  }
+  RecordProperty("peak_triangles", std::to_string(most));
+  RecordProperty("worst_error", std::to_string(worst));
+  EXPECT_GT(held, 0u);
+  EXPECT_GE(run.steps.back().held_depth, 0);
+  EXPECT_GT(worst, 0.5 + 0.125);
+  EXPECT_EQ(run.topology, (MeshTopologySummary{2, 1}));  // kept: the neck F no longer has
+}
+
 // Through the binary: the dumbbell as a NIfTI file, closing 2 mm (the neck, 10 mm across, stays
 // open). The run says how many critical points it watches and reports the split on stderr and
 // in the JSON, within one step of the closed form (5 mm less the blur's 2.0 mm, within 0.5 mm
@@ -251,6 +313,9 @@ TEST(MriEvents, Colin27HoleNotRepairedLeavesTheStepAsWithoutAMonitor) {
   options.threshold = 0.5;
   options.epsilon = 0.125;
   options.density = 2.0;
+  // The failed repair's own footprint: the splits held after it (which end the refinement
+  // there, DumbbellSplitNeitherRepairedNorRebuiltEndsBounded; 10 on this step) would differ.
+  options.hold_splits_when_unrepaired = false;
   std::vector<Vec3> positions[2];
   for (const bool watched : {false, true}) {
     options.topology_events = watched;
