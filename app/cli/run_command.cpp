@@ -20,6 +20,7 @@
 #include "core/io/number_text.h"
 #include "core/io/stats_csv.h"
 #include "core/io/vtk_export.h"
+#include "core/topology/fixed_critical_points.h"
 
 namespace dynamesh {
 namespace {
@@ -176,6 +177,11 @@ void log_topology(std::ostream& log, const StepStats& s) {
         << ", " << e.position.z() << ")\n";
   for (const std::string& why : s.repair_refusals)
     log << "topology: no local repair at step " << s.step << ": " << why << "\n";
+  if (s.splits_held > 0)
+    log << "topology: " << s.splits_held << " split(s) held at step " << s.step
+        << " (no face split beyond depth " << s.held_depth
+        << " since an event the mesh could not follow; max error " << std::setprecision(3)
+        << s.max_error << ")\n";
   if (s.local_repairs > 0 && !s.rebuilt)
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
         << " faces near the event replaced, the patch contoured at spacing " << std::setprecision(3)
@@ -338,6 +344,19 @@ void fail_if_left_behind(const RunOptions& o, const StepStats& s) {
                    "--no-geometric on a static interval, e.g. --steps 0 or --t1 equal to --t0)");
 }
 
+// A surface whose critical points are fixed (mri, issue 16): how many the run watches, when
+// any, on stderr whatever --quiet says, like the events they announce.
+void log_fixed_critical_points(std::ostream& log, const Surface& surface, double threshold) {
+  const auto* field = dynamic_cast<const FixedCriticalField*>(&surface);
+  if (!field) return;
+  const FixedCriticalPoints& p = field->fixed_critical_points(threshold);
+  if (p.points.empty()) return;  // no monitor is kept: the run is what it was
+  log << "topology: " << p.points.size() << " critical point(s) of F can change the layer's "
+      << "topology in this run (" << p.candidates << " found, " << p.cancelled
+      << " cancelled in pairs of persistence below T; " << format_significant(p.seconds, 2)
+      << " s)\n";
+}
+
 // Adapts over the whole animation, writing what was asked for along the way.
 void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fields,
                StatsCsvWriter* csv, FrameExporter* exporter, FrameRenderer* frames,
@@ -359,6 +378,7 @@ void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fiel
       if (frames) frames->render(snap, s.step);
     }
   };
+  log_fixed_critical_points(log, adapter.surface(), o.adapt.threshold);
   record(adapter.initialize());
   summary.keyframe_triangles.push_back(adapter.stats().triangles);
   const std::vector<double> times = step_times(o);

@@ -50,6 +50,13 @@ struct AdaptOptions {
   // Repair an event locally (core/topology/local_repair.h) before falling back to rebuilding
   // the whole mesh; false always rebuilds (the benchmark's baseline).
   bool local_topology_repair = true;
+  // Rebuild a distance field's layer from F's contour (a global re-base) when its event cannot
+  // be repaired locally and a contour has the topology it must take; false keeps the mesh
+  // (tests: the path where neither is possible, which holds the splits: Adapter::hold_splits).
+  bool topology_rebase = true;
+  // When an event is neither repaired nor rebuilt, hold the splits (Adapter::hold_splits) so
+  // that the refinement ends; false lets it run (tests: a failed repair's own footprint).
+  bool hold_splits_when_unrepaired = true;
   SmoothingOptions smoothing;
   // Rounds of smoothing, measurement and settling (welds and splits until quiet) at the
   // initial time, after the first refinement (Adapter::relax): refined from the base mesh's

@@ -403,6 +403,7 @@ void Adapter::rebuild_from_base(long euler, long components) {
   // As initialize() does, but within a step: every vertex is born now (none survives), local
   // repairs of this step included.
   Mesh48 base = mid_run_base_mesh(euler, components);
+  held_depth_ = -1;  // the new mesh has F's topology
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
@@ -595,14 +596,14 @@ bool Adapter::weld_allowed(const DiamondChange& plan, double error, double curre
 
 bool Adapter::pathological(Face f) const {
   const auto v = mesh_.vertices(f);
-  const auto range =
-      angle_range_deg(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]));
-  return range[0] < options_.angle_guard.min_deg || range[1] > options_.angle_guard.max_deg;
+  return !angles_within(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]),
+                        options_.angle_guard.min_deg, options_.angle_guard.max_deg);
 }
 
 // The edge to split is the face's refinement edge; its incident angles are those of the
 // face and of its neighbour across it (the diamond).
 bool Adapter::split_refused(Face f) const {
+  if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) return true;  // hold_splits
   if (!options_.angle_guard.refuse_splits) return false;
   if (pathological(f)) return true;
   const Face other = mesh_.neighbor(f, 0);
@@ -647,8 +648,10 @@ void Adapter::weld_pass() {
     measure_star(plan);
     return weld_key(plan, ambiguous);
   };
-  std::vector<double> key(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
-  std::vector<std::uint8_t> ambiguous(static_cast<std::size_t>(n), 0);
+  std::vector<double>& key = weld_keys_;
+  std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
+  key.assign(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
+  ambiguous.assign(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
@@ -759,6 +762,7 @@ void Adapter::split_pass(bool initial) {
     }
     if (split_refused(f)) {
       ++stats_.splits_refused;
+      if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) ++stats_.splits_held;
       continue;
     }
     tracker_->touched.clear();
@@ -817,6 +821,7 @@ void Adapter::finish_stats() {
     stats_.survivor_displacement_mean = kept ? sum / static_cast<double>(kept) : 0.0;
     stats_.survivor_displacement_max = worst;
   }
+  stats_.held_depth = held_depth_;
   stats_.projection_failures = tracker_->projection_failures;
   tracker_->projection_failures = 0;
   const PhaseSeconds& p = stats_.seconds;

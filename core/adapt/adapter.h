@@ -160,6 +160,11 @@ class Adapter {
   // when no base mesh with that topology can be placed on the surface now (the run stops
   // with that reason rather than refine a wrong mesh without end).
   void rebuild_from_base(long euler, long components);
+  // rebuild_from_base, except on a surface with fixed critical points (mri), whose layers no
+  // coarse contour resolves: the mesh then keeps its topology, as it did before events were
+  // watched, with the reason among the step's repair_refusals. True when it was rebuilt.
+  bool rebuild_or_keep(long euler, long components);
+  void hold_splits();
   Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
@@ -172,6 +177,10 @@ class Adapter {
   SampleStore samples_;
   ErrorPredictor predictor_;
   std::vector<Face> to_measure_;  // sampling()'s list, reused step to step
+  // weld_pass()'s per-vertex keys and ambiguity flags, reused step to step (above 4 MB a
+  // fresh block is fresh pages: allocator_policy.h).
+  std::vector<double> weld_keys_;
+  std::vector<std::uint8_t> weld_ambiguous_;
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
@@ -196,6 +205,7 @@ class Adapter {
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
+  int held_depth_ = -1;               // no split beyond it (hold_splits); -1: none
   std::vector<Face> bad_faces_[2];    // folded faces and slivers (publish_repaired)
   FoldScreenBuffers fold_screen_;     // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;

@@ -101,6 +101,21 @@ EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quar
   // (its second derivative is at most ~10 peak over the edge), and the peak is measured again.
   constexpr int kIntervals = 64;
   EdgePeak best;
+  if (slope[1] == 0.0 && slope[2] == 0.0 && bend[1] == 0.0 && bend[2] == 0.0 && q0[1] == 0.0 &&
+      q0[2] == 0.0) {
+    // A scalar residual (implicit surfaces): the same values without a square root per point.
+    // The norm of (x, 0, 0) is sqrt(x * x), which is |x| exactly in binary floating point
+    // unless x * x underflows or overflows; there the norm is taken as above.
+    for (int k = 1; k < kIntervals; ++k) {
+      const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
+      const double x = q0[0] + s * slope[0] + s * s * bend[0];
+      const double magnitude =
+          std::abs(x) > 1e-150 && std::abs(x) < 1e150 ? std::abs(x) : std::sqrt(x * x);
+      const double value = t * (1.0 - t) * magnitude;
+      if (value > best.value) best = {t, value};
+    }
+    return best;
+  }
   for (int k = 1; k < kIntervals; ++k) {
     const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
     const double value = t * (1.0 - t) * (q0 + s * slope + s * s * bend).norm();

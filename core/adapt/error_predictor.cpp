@@ -61,6 +61,20 @@ Change change(const float (&now)[3][3], const float (&then)[3][3]) {
   return out;
 }
 
+// The same where the residual is scalar (implicit: only the first of each edge's three
+// components is set, the others are zero in both): the norm of (x, 0, 0) is sqrt(x * x), which
+// is |x| exactly (x, a difference of two floats, neither underflows nor overflows when squared
+// in double), so this is change() to the bit, without its three square roots.
+Change scalar_change(const float (&now)[3][3], const float (&then)[3][3]) {
+  Change out;
+  for (int e = 0; e < 3; ++e) {
+    const double d = std::abs(static_cast<double>(now[e][0]) - then[e][0]);
+    out.largest = std::max(out.largest, d);
+    out.sum += d;
+  }
+  return out;
+}
+
 // The largest change over the triangle of the residual's quadratic part,
 // sum_e b_i b_j dc_e: exact where the residual is scalar (implicit; scalar_maximum, at most
 // the estimate below and at least 3/4 of it: x = (1, 1, 0) gives 1/4, not 1/3), else with the
@@ -252,7 +266,8 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       // The face's frames are this step's (begin_step), its reference its last measurement's.
       const Coefficients now = coefficients(mesh, probe, v, edge);
       const double quadratic = quadratic_change(now.c, reference_[k].c, !probe.parametric());
-      const Change cubic = change(now.d, reference_[k].d);
+      const Change cubic = probe.parametric() ? change(now.d, reference_[k].d)
+                                              : scalar_change(now.d, reference_[k].d);
       double offset = 0.0;
       for (Vertex x : v) offset = std::max(offset, frame_[x.idx].offset);
       const double stretch = strain(now.length, reference_[k].length);

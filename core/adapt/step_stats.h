@@ -65,6 +65,10 @@ struct StepStats {
   std::size_t repair_faces_replaced = 0;  // faces the local repairs cut out
   double repair_spacing = 0.0;  // the coarsest contour spacing of this step's repair patches
   std::vector<std::string> repair_refusals;  // why a local repair was not done
+  // Splits refused (also counted in splits_refused) because an event was neither repaired nor
+  // rebuilt: no face deeper than held_depth is split (Adapter::hold_splits); -1 when none.
+  std::size_t splits_held = 0;
+  int held_depth = -1;
   bool rebuilt = false;
   // The mesh's elements were renumbered along a space-filling curve at the end of the step
   // (AdaptOptions::renumber): ids are not kept across such a step (survival is counted through

@@ -29,6 +29,25 @@ std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& 
   return {std::min({x, y, z}), std::max({x, y, z})};
 }
 
+bool angles_within(const Vec3& a, const Vec3& b, const Vec3& c, double min_deg, double max_deg) {
+  // The cosines are correct to ~1e-15 where the triangle is not degenerate, and atan2's angles
+  // to ~1e-14 degrees: outside a margin of 1e-9 in the cosine both decide alike. A degenerate
+  // corner gives a NaN cosine, which fails both tests and goes the exact way.
+  constexpr double kMargin = 1e-9;
+  const double upper = std::cos(min_deg * M_PI / 180.0) - kMargin;  // angle > min_deg
+  const double lower = std::cos(max_deg * M_PI / 180.0) + kMargin;  // angle < max_deg
+  const Vec3* corner[3] = {&a, &b, &c};
+  bool clear = true;
+  for (int i = 0; i < 3 && clear; ++i) {
+    const Vec3 u = *corner[(i + 1) % 3] - *corner[i], v = *corner[(i + 2) % 3] - *corner[i];
+    const double cosine = u.dot(v) / std::sqrt(u.squaredNorm() * v.squaredNorm());
+    clear = cosine < upper && cosine > lower;
+  }
+  if (clear) return true;
+  const auto range = angle_range_deg(a, b, c);
+  return !(range[0] < min_deg || range[1] > max_deg);
+}
+
 AspectDistribution aspect_distribution(const Mesh48& mesh) {
   AspectDistribution d;
   std::vector<double> ratios;

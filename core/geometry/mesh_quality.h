@@ -34,6 +34,11 @@ double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c);
 // Smallest and largest interior angle of one triangle, in degrees.
 std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& c);
 
+// Exactly whether angle_range_deg(a, b, c) lies within [min_deg, max_deg], mostly without its
+// three atan2: each angle's cosine is compared with the limits' first, and only a triangle
+// with an angle within 1e-9 of a limit's cosine (or degenerate) takes angle_range_deg's path.
+bool angles_within(const Vec3& a, const Vec3& b, const Vec3& c, double min_deg, double max_deg);
+
 // Distribution of the aspect ratio over the faces: percentiles (nearest rank) and a
 // histogram. A 4-8 mesh of right isosceles triangles sits at 1.207 everywhere; the tail
 // (p99, max) is what tangential motion and deformation stretch.

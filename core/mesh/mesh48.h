@@ -194,6 +194,9 @@ class Mesh48 {
   // --- listeners -------------------------------------------------------------------------
   void add_listener(MeshListener* listener);
   void remove_listener(MeshListener* listener);
+  // Forgets every listener: a copy made for trial surgery (local_repair.h) must not tell the
+  // original's listeners about its splits.
+  void clear_listeners() { listeners_.clear(); }
 
   // --- invariants ------------------------------------------------------------------------
   // Full invariant check, O(mesh): conforming and edge-manifold (every halfedge's twin

@@ -52,7 +52,8 @@ struct SceneRequest {
   // with them directly when applying afterwards would redo expensive work (mri: a
   // segmentation threshold), as long as applying the same value again is free.
   ParameterOverrides overrides;
-  // Stages of a long load (mri: "reading", "segmenting", "distance transform"), each with
+  // Stages of a long load (mri: "reading", "segmenting", "distance transform", "critical
+  // points"), each with
   // the fraction done; may be empty. Only called during make_scene, from its thread.
   ProgressCallback progress;
   // Memory, MiB, the scene may plan to use while loading (mri: the volume's preprocessing);

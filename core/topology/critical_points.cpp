@@ -13,35 +13,6 @@ bool contains(const Box3& box, const Vec3& p) {
   return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
 }
 
-// Newton's method on grad F = 0 from `start`; false when it leaves `region`, meets a singular
-// Hessian or does not converge.
-bool newton_critical(const ImplicitSurface& surface, const Vec3& start, const Box3& region,
-                     double tolerance, CriticalPoint& out) {
-  Vec3 x = start;
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    Vec3 g;
-    surface.value_gradient(x, g);
-    const Mat3 h = surface.hessian(x);
-    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(h);
-    const Vec3 lambda = eigen.eigenvalues();
-    const double scale = lambda.cwiseAbs().maxCoeff();
-    if (!(scale > 0) || lambda.cwiseAbs().minCoeff() < 1e-6 * scale) return false;  // degenerate
-    const Vec3 step =
-        eigen.eigenvectors() * (eigen.eigenvectors().transpose() * g).cwiseQuotient(lambda);
-    x -= step;
-    if (!contains(region, x) || !x.allFinite()) return false;
-    if (step.norm() < tolerance) {
-      out.position = x;
-      out.value = surface.value(x);
-      const Vec3 at = surface.hessian(x).selfadjointView<Eigen::Lower>().eigenvalues();
-      out.index = static_cast<int>((at.array() < 0).count());
-      out.curvature = at.cwiseAbs().maxCoeff();
-      return true;
-    }
-  }
-  return false;
-}
-
 bool changes_sign(const std::size_t corner[8], const std::vector<Vec3>& gradients, int axis) {
   bool negative = false, positive = false;
   for (int c = 0; c < 8; ++c) {
@@ -52,6 +23,32 @@ bool changes_sign(const std::size_t corner[8], const std::vector<Vec3>& gradient
 }
 
 }  // namespace
+
+bool refine_critical_point(const FieldJet& evaluate, const Vec3& start, const Box3& region,
+                           double tolerance, CriticalPoint& out) {
+  Vec3 x = start, g;
+  Mat3 h;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    evaluate(x, g, h);
+    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(h);
+    const Vec3 lambda = eigen.eigenvalues();
+    const double scale = lambda.cwiseAbs().maxCoeff();
+    if (!(scale > 0) || lambda.cwiseAbs().minCoeff() < 1e-6 * scale) return false;  // degenerate
+    const Vec3 step =
+        eigen.eigenvectors() * (eigen.eigenvectors().transpose() * g).cwiseQuotient(lambda);
+    x -= step;
+    if (!contains(region, x) || !x.allFinite()) return false;
+    if (step.norm() < tolerance) {
+      out.position = x;
+      out.value = evaluate(x, g, h);
+      const Vec3 at = h.selfadjointView<Eigen::Lower>().eigenvalues();
+      out.index = static_cast<int>((at.array() < 0).count());
+      out.curvature = at.cwiseAbs().maxCoeff();
+      return true;
+    }
+  }
+  return false;
+}
 
 GridField sample_field(const ImplicitSurface& surface, const ContourGrid& grid) {
   const auto [nx, ny, nz] = grid.cells;
@@ -78,6 +75,9 @@ std::vector<CriticalPoint> find_critical_points(const ImplicitSurface& surface,
   };
   const Vec3 h = grid.spacing();
   const double tolerance = 1e-9 * h.norm();
+  const FieldJet jet = [&](const Vec3& p, Vec3& gradient, Mat3& hessian) {
+    return surface.value_gradient_hessian(p, gradient, hessian);
+  };
   std::vector<CriticalPoint> found;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -102,7 +102,7 @@ std::vector<CriticalPoint> find_critical_points(const ImplicitSurface& surface,
         region.extend(Vec3(centre - 1.5 * h));
         region.extend(Vec3(centre + 1.5 * h));
         CriticalPoint cp;
-        if (!newton_critical(surface, centre, region, tolerance, cp)) continue;
+        if (!refine_critical_point(jet, centre, region, tolerance, cp)) continue;
         if (std::abs(cp.value) > max_abs_value || !contains(grid.box, cp.position)) continue;
         bool duplicate = false;
         for (const CriticalPoint& other : found)

@@ -7,6 +7,7 @@
 // happens at a non-degenerate critical point.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/geometry/vector_types.h"
@@ -21,6 +22,13 @@ struct CriticalPoint {
   int index = 0;       // negative eigenvalues of the Hessian: 0 minimum, 1 and 2 saddles, 3 maximum
   double curvature = 0.0;  // the Hessian's largest |eigenvalue| there
 };
+
+// Newton's method on grad F = 0 from `start`, with `evaluate` giving F, grad F and Hess F at a
+// point; false when it leaves `region`, meets a singular Hessian (a degenerate point) or does
+// not converge. On success `out` holds the point, F there, its Morse index and curvature.
+using FieldJet = std::function<double(const Vec3& p, Vec3& gradient, Mat3& hessian)>;
+bool refine_critical_point(const FieldJet& evaluate, const Vec3& start, const Box3& region,
+                           double tolerance, CriticalPoint& out);
 
 // F and grad F at every grid point (x fastest). Serial on purpose: a coarse grid of a few
 // thousand points costs well under a millisecond, and an OpenMP region on busy cores cost

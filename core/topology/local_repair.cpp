@@ -207,6 +207,74 @@ bool cut_islands(const Mesh48& mesh, std::vector<char>& cut, const Vec3& centre)
   return found;
 }
 
+// The splits an attempt makes (levelling its border up, mending a loop's parity), made on a
+// copy of the mesh that tells no listener: they are recorded in order and made again on the
+// mesh itself only when the attempt succeeds, so that a failed attempt leaves the mesh as it was
+// (on Colin27 and on the dumbbell after motion9 every attempt of the ladder failed, and each
+// could split diamonds that stayed). As they happen, a split face's new child takes its cut
+// flag (children[0] keeps the parent's slot, Mesh48.h) and the new vertex is put on F, as the
+// adapter's probe puts split vertices when the splits are made again.
+class TrialSplits : public MeshListener {
+ public:
+  TrialSplits(const ImplicitSurface& surface, std::vector<char>& cut)
+      : surface_(surface), cut_(cut) {}
+  Vertex split(Mesh48& mesh, Face f) {
+    const Vertex v = mesh.split(f);
+    if (v.is_valid()) faces.push_back(f);
+    cut_.resize(mesh.face_capacity(), 0);
+    return v;
+  }
+  void after_split(Mesh48& mesh, const DiamondChange& change) override {
+    cut_.resize(mesh.face_capacity(), 0);
+    for (int h = 0; h < change.count; ++h) {
+      const Bisection& b = change.halves[static_cast<std::size_t>(h)];
+      cut_[b.children[1].idx] = cut_[b.children[0].idx];
+    }
+    const Vec3 mid = mesh.position(change.vertex);
+    const double half =
+        0.5 * (mesh.position(change.parents[0]) - mesh.position(change.parents[1])).norm();
+    const ProjectionResult r = project_to_surface(surface_, mid);
+    if (r.converged && (r.point - mid).norm() <= half) mesh.position(change.vertex) = r.point;
+  }
+  void after_weld(Mesh48&, const DiamondChange&) override {}
+  void after_renumber(Mesh48&, const Renumbering&) override {}
+  std::vector<Face> faces;  // given to split(), in order
+
+ private:
+  const ImplicitSurface& surface_;
+  std::vector<char>& cut_;
+};
+
+// The other way to level the border (level_border): its faces more than one bisection coarser
+// than the deepest are split, until none is. Needed where the faces next to the event are the
+// coarse ones: after motion9's smoothing the dumbbell's neck was covered by base faces (depth 0)
+// among faces of depth 2, and cutting the deep ones spread the cut over 226 of the mesh's 408
+// faces, with 4 or 5 border loops against the contour's 2. Returns whether the border is level.
+bool raise_border(Mesh48& mesh, std::vector<char>& cut, TrialSplits& splits) {
+  constexpr int kMaxRounds = 8;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    int deepest = -1;
+    std::vector<Face> border;
+    for (const Face f : mesh.live_faces()) {
+      if (cut[f.idx]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const Face across = mesh.neighbor(f, i);
+        if (!across.is_valid() || !cut[across.idx]) continue;
+        border.push_back(f);
+        deepest = std::max(deepest, mesh.depth(f));
+        break;
+      }
+    }
+    bool split = false;
+    for (const Face f : border)
+      if (!cut[f.idx] && mesh.depth(f) + 1 < deepest && splits.split(mesh, f).is_valid())
+        split = true;
+    if (!split) return true;
+    close_cut(mesh, cut);  // a child's refinement edge may lie on the border
+  }
+  return false;
+}
+
 // Border halfedges (of remaining faces whose neighbour is cut) as (from, to) vertex ids.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> border_of(const Mesh48& mesh,
                                                                const std::vector<char>& cut) {
@@ -303,10 +371,18 @@ struct Patch {
 // F's contour on a grid of `h` with a grid point on `centre`, reaching `reach` from it: the
 // triangles whose every corner is `inside`; empty loops and triangles when its border is
 // pinched.
+int patch_grid_half_cells(double reach, double h) {
+  return static_cast<int>(std::ceil((reach + h) / h));
+}
+std::size_t patch_grid_cells(double reach, double h) {
+  const auto side = static_cast<std::size_t>(2 * patch_grid_half_cells(reach, h));
+  return side * side * side;
+}
+
 template <class Inside>
 Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double reach, double h,
                     const Inside& inside_hole) {
-  const int n = static_cast<int>(std::ceil((reach + h) / h));
+  const int n = patch_grid_half_cells(reach, h);
   ContourGrid grid;
   grid.box.min = centre - Vec3::Constant(n * h);
   grid.box.max = centre + Vec3::Constant(n * h);
@@ -519,9 +595,24 @@ double patch_spacing(const Mesh48& mesh, const std::vector<Loop>& loops,
                     std::max(finest, coarsest));
 }
 
-// One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam).
-LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
-                          double r, double h, double max_h, bool islands) {
+const char* const kBudgetSpent = "the repair's work budget (grid cells) is spent";
+const char* const kNothingToRaise = "the cut's border is level";
+
+// What a successful attempt does to the mesh: its splits (in order), then the surgery.
+struct RepairPlan {
+  std::vector<Face> splits;
+  std::vector<Face> removed;
+  std::vector<Vertex> existing;
+  std::vector<Vec3> created;
+  std::vector<Triangle> triangles;
+  int depth = 0;
+};
+
+// One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam), on
+// a copy of `original`: when it succeeds, `plan` says what to do to the mesh.
+LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface,
+                          const Vec3& centre, double r, double h, double max_h, bool islands,
+                          bool raise, std::size_t grid_cells_left, RepairPlan& plan) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -531,12 +622,25 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   // 1. The cut, with every border loop even: the new triangles filling a loop's side number
   // as many as its edges, modulo 2, and where the patch leaves a loop alone (a split: one cap
   // per loop) they are paired among themselves.
+  Mesh48 mesh = original;
+  mesh.clear_listeners();
   std::vector<char> cut(mesh.face_capacity(), 0);
+  TrialSplits splits(surface, cut);
+  mesh.add_listener(&splits);
   for (const Face f : mesh.live_faces())
     for (const Vertex v : mesh.vertices(f))
       if ((mesh.position(v) - centre).norm() <= r) cut[f.idx] = 1;
   close_cut(mesh, cut);
-  level_border(mesh, cut);
+  // The border levelled down (the finer faces cut away), or up (the coarser ones split,
+  // raise_border) when the caller asks: where the faces next to the event are the coarse ones,
+  // levelling down spreads the cut.
+  if (!raise) {
+    level_border(mesh, cut);
+  } else if (!raise_border(mesh, cut, splits)) {
+    return refuse("the cut's border could not be levelled up");
+  } else if (splits.faces.empty()) {
+    return refuse(kNothingToRaise);
+  }
   for (int round = 0; round < 4 && islands && cut_islands(mesh, cut, centre); ++round) {
     close_cut(mesh, cut);
     level_border(mesh, cut);
@@ -586,7 +690,7 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
             !cut[partner.idx])
           diamond = f;
       });
-    if (!diamond.is_valid() || !mesh.split(diamond).is_valid())
+    if (!diamond.is_valid() || !splits.split(mesh, diamond).is_valid())
       return refuse("no cut with even border loops");
     cut.resize(mesh.face_capacity(), 0);
     close_cut(mesh, cut);  // a child's refinement edge may lie on the border
@@ -605,13 +709,16 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
 
   // 2. The patch: F's contour within r - h / 2 of the event, so that a strip about an edge
   // wide separates it from the cut's border (which lies beyond r).
-  double reach = 0;
-  for (const Face f : removed)
-    for (const Vertex v : mesh.vertices(f))
-      reach = std::max(reach, (mesh.position(v) - centre).norm());
   const double keep = r - 0.5 * h;
   const auto in_hole = [&](const Vec3& p) { return (p - centre).norm() <= keep; };
-  const Patch patch = contour_patch(surface, centre, reach, h, in_hole);
+  // The grid reaches as far as the patch, not the cut: its triangles are the same (the same
+  // lattice, a grid point on the event), and its cost no longer grows with a spreading cut
+  // (at the dumbbell's split after motion9 the cut reached 20 mm, a grid of 162^3 cells at the
+  // finest spacing; 34^3 now).
+  const std::size_t cells = patch_grid_cells(keep, h);
+  if (cells > grid_cells_left) return refuse(kBudgetSpent);
+  result.grid_cells = cells;
+  const Patch patch = contour_patch(surface, centre, keep, h, in_hole);
   if (patch.loops.size() != mesh_loops.size())
     return refuse("the contour near the event has " + std::to_string(patch.loops.size()) +
                   " border loops, the cut " + std::to_string(mesh_loops.size()));
@@ -757,18 +864,46 @@ LocalRepairResult attempt(Mesh48& mesh, const ImplicitSurface& surface, const Ve
   result.pairing_flips = pairing.flips;
   result.pairing_splits = pairing.splits;
   const std::vector<Vec3> created(positions.begin() + offset, positions.end());
-  Mesh48 backup = mesh;
-  try {
-    result.new_vertices = mesh.replace_region(removed, existing, created, ordered,
-                                              std::vector<int>(ordered.size(), depth));
+  try {  // on the copy first: the surgery may be refused only once it has begun
+    mesh.replace_region(removed, existing, created, ordered,
+                        std::vector<int>(ordered.size(), depth));
   } catch (const std::logic_error& e) {
-    mesh = std::move(backup);
     return refuse(e.what());
   }
   result.repaired = true;
   result.removed_faces = removed.size();
   result.added_faces = ordered.size();
   result.spacing = h;
+  plan.splits = std::move(splits.faces);
+  plan.removed = std::move(removed);
+  plan.existing = std::move(existing);
+  plan.created = created;
+  plan.triangles = std::move(ordered);
+  plan.depth = depth;
+  return result;
+}
+
+// Makes a successful attempt's splits and surgery on the mesh itself, telling its listeners
+// of the splits as any split does (the surgery they learn of from the caller, Mesh48.h).
+LocalRepairResult carry_out(Mesh48& mesh, const RepairPlan& plan, LocalRepairResult result) {
+  const auto refuse = [&](const std::string& why) {
+    result.repaired = false;
+    result.why_not = why;
+    return result;
+  };
+  // The same splits of the same mesh give the same ids (free lists included), so the surgery
+  // planned on the copy fits. (Should one fail, the splits made stay: the listeners know them.)
+  for (const Face f : plan.splits)
+    if (!mesh.split(f).is_valid()) return refuse("a split made on the copy failed on the mesh");
+  Mesh48 backup = mesh;
+  try {
+    result.new_vertices =
+        mesh.replace_region(plan.removed, plan.existing, plan.created, plan.triangles,
+                            std::vector<int>(plan.triangles.size(), plan.depth));
+  } catch (const std::logic_error& e) {
+    mesh = std::move(backup);
+    return refuse(e.what());
+  }
   return result;
 }
 
@@ -784,7 +919,9 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // A matching or a strip that fails at one cut often succeeds at a slightly larger one (the
   // border and the patch's loops both change): a few cuts, the smallest first.
   const double h = options.spacing;
-  std::string why;
+  // Each reason once, in the order met, with the number of attempts that gave it (on Colin27
+  // the same mismatch of loops ended all 48 attempts: one line, not 48 times the same).
+  std::vector<std::pair<std::string, int>> reasons;
   // The patch as coarse as the seam first (local_repair.h), then finer by steps down to the
   // finest spacing. With the mended pairing and the stitching by dynamic programming the
   // first attempt is taken on the examples (blobs, torus pinch); the ladder remains for a
@@ -797,6 +934,8 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // leave the cut more border loops than the contour, but cutting them where another cut
   // would do changes which attempt is taken (the blobs along x in 20 steps then folded after
   // the merge), so only where no cut without them would do.
+  std::size_t cells_used = 0;
+  bool spent = false;
   std::vector<double> coarsest;
   for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
     coarsest.push_back(most);
@@ -812,11 +951,33 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
       for (const double finer : ladder.finer)
         for (const double most : coarsest) {
           if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
-          last = attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most,
-                         ladder.islands);
-          if (last.repaired) return last;
-          why += (why.empty() ? "" : "; ") + last.why_not;
+          if (spent) break;
+          // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
+          // split), unless levelling up would split nothing.
+          for (const bool raise : {false, true}) {
+            if (spent) break;
+            RepairPlan plan;
+            const LocalRepairResult r =
+                attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most,
+                        ladder.islands, raise, options.max_grid_cells - cells_used, plan);
+            cells_used += r.grid_cells;
+            if (r.repaired) return carry_out(mesh, plan, r);
+            spent = r.why_not == kBudgetSpent;
+            if (r.why_not == kNothingToRaise) break;
+            last = r;
+            const auto seen = std::find_if(reasons.begin(), reasons.end(), [&](const auto& reason) {
+              return reason.first == last.why_not;
+            });
+            if (seen == reasons.end())
+              reasons.emplace_back(last.why_not, 1);
+            else
+              ++seen->second;
+          }
         }
+  std::string why;
+  for (const auto& [reason, attempts] : reasons)
+    why += (why.empty() ? "" : "; ") + reason +
+           (attempts > 1 ? " (" + std::to_string(attempts) + " attempts)" : "");
   last.why_not = why;
   return last;
 }

@@ -39,6 +39,11 @@ struct LocalRepairOptions {
   // them for T there) between `spacing` and this, so the new faces are no finer than the
   // faces around them and the queues re-adapt the region both ways.
   double max_spacing = 0.0;
+  // The work bound: the cells of the patches' contour grids, summed over the attempts (each
+  // costs one evaluation of F per grid point). An attempt that would pass it is not made. The
+  // analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at most
+  // (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
+  std::size_t max_grid_cells = std::size_t{1} << 22;
 };
 
 struct LocalRepairResult {
@@ -48,11 +53,13 @@ struct LocalRepairResult {
   std::size_t added_faces = 0;
   double spacing = 0.0;                       // the patch's contour spacing
   int pairing_flips = 0, pairing_splits = 0;  // that mended the new triangles' matching
+  std::size_t grid_cells = 0;                 // of the patch's contour grid
   std::vector<Vertex> new_vertices;
 };
 
-// Leaves the mesh unchanged unless it returns repaired, but for the ordinary 4-8 splits (told to
-// the mesh's listeners) that mend the parity of a border loop.
+// Leaves the mesh unchanged unless it returns repaired: each attempt works on a copy, and only
+// the one that succeeds is made on the mesh (its 4-8 splits, which level the cut's border or
+// mend the parity of a border loop, told to the mesh's listeners; then the surgery).
 LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
                                  const LocalRepairOptions& options);
 

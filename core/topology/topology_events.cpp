@@ -113,7 +113,8 @@ MeshTopologySummary summarize_topology(const Mesh48& mesh) {
   return summarize_topology(triangles, mesh.vertex_capacity());
 }
 
-TopologyMonitor::TopologyMonitor(const ContourBaseOptions& grid) : grid_options_(grid) {}
+TopologyMonitor::TopologyMonitor(const ContourBaseOptions& grid, double resolution)
+    : grid_options_(grid), resolution_(resolution) {}
 
 ContourGrid TopologyMonitor::grid_for(const ImplicitSurface& surface) const {
   const Box3 box = surface.bounds();
@@ -125,12 +126,23 @@ ContourGrid TopologyMonitor::grid_for(const ImplicitSurface& surface) const {
 }
 
 void TopologyMonitor::reset(const ImplicitSurface& surface, const Mesh48& mesh) {
+  mesh_topology_ = summarize_topology(mesh);
+  previous_time_ = surface.time();
+  if (const auto* field = dynamic_cast<const FixedCriticalField*>(&surface)) {
+    fixed_ = &field->fixed_critical_points(resolution_);
+    previous_offset_ = field->time_offset();
+    // A local repair cuts two of these around an event and contours at half of one
+    // (adapter_topology.cpp): two voxels, the finest detail the distance holds.
+    spacing_ = 2.0 * fixed_->spacing;
+    diagonal_ = std::sqrt(3.0) * fixed_->spacing;
+    previous_ = fixed_->points;
+    for (CriticalPoint& cp : previous_) cp.value += previous_offset_;
+    return;
+  }
   const ContourGrid grid = grid_for(surface);
   spacing_ = grid.spacing().maxCoeff();
   diagonal_ = grid.spacing().norm();
   previous_ = find_critical_points(surface, grid, sample_field(surface, grid), HUGE_VAL);
-  previous_time_ = surface.time();
-  mesh_topology_ = summarize_topology(mesh);
 }
 
 std::optional<double> TopologyMonitor::clear_level(double diagonal, double fraction) const {
@@ -148,8 +160,47 @@ std::optional<double> TopologyMonitor::clear_level(double diagonal, double fract
   return std::clamp(0.0, lo, hi);
 }
 
+TopologyCheck TopologyMonitor::check_fixed(const FixedCriticalField& field, double time) {
+  TopologyCheck out;
+  out.contour_trusted = false;
+  out.expected_euler = mesh_topology_.euler;
+  const double c0 = previous_offset_, c1 = field.time_offset();
+  const double t0 = previous_time_;
+  // F = G + c changes sign at a point only if -G lies between c0 and c1 (within the rounding
+  // that `inside` allows for).
+  const double slack = 1e-6 * (1.0 + std::abs(c0) + std::abs(c1));
+  const auto& points = fixed_->points;
+  const auto first =
+      std::lower_bound(points.begin(), points.end(), -std::max(c0, c1) - slack,
+                       [](const CriticalPoint& cp, double value) { return cp.value < value; });
+  for (auto it = first; it != points.end() && it->value <= -std::min(c0, c1) + slack; ++it) {
+    CriticalPoint before = *it, after = *it;
+    before.value += c0;
+    after.value += c1;
+    const bool now_inside = inside(after, diagonal_);
+    if (inside(before, diagonal_) == now_inside) continue;
+    const double s = std::clamp(before.value / (before.value - after.value), 0.0, 1.0);
+    out.events.push_back({t0 + s * (time - t0), it->position, kind_of(it->index, now_inside)});
+    out.expected_euler += euler_change(it->index, now_inside);
+  }
+  // Events in the order they happen.
+  std::sort(out.events.begin(), out.events.end(),
+            [](const TopologyEvent& a, const TopologyEvent& b) { return a.time < b.time; });
+  for (std::size_t i = 0; i < previous_.size(); ++i) previous_[i].value = points[i].value + c1;
+  previous_offset_ = c1;
+  previous_time_ = time;
+  out.rebase = !out.events.empty();
+  return out;
+}
+
 TopologyCheck TopologyMonitor::check(const ImplicitSurface& surface) {
   const auto start = std::chrono::steady_clock::now();
+  if (fixed_) {
+    TopologyCheck out =
+        check_fixed(dynamic_cast<const FixedCriticalField&>(surface), surface.time());
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
   TopologyCheck out;
   const ContourGrid grid = grid_for(surface);
   spacing_ = grid.spacing().maxCoeff();

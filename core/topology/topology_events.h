@@ -19,6 +19,14 @@
 // (`expected_euler`; an i-handle changes the surface's characteristic by 2 (-1)^i). Otherwise
 // the contour's topology is what the mesh must have. The mesh is changed (`rebase`) when an event
 // happened or a trusted contour disagrees with it.
+//
+// A surface whose critical points are fixed (FixedCriticalField: F = G + c(t), mri) is watched
+// without a grid: its critical points, those of persistence below `resolution` cancelled, are
+// sorted by G, and a step's events are those whose -G lies between c at the step's two ends
+// (a binary search). No contour is compared (a 24-cell grid cannot resolve a brain's folds, and
+// what it misses is below the resolution by construction): the mesh must then have the Euler
+// characteristic Morse theory gives, and a monitor that has no point to watch (`idle`) is not
+// kept by the adapter.
 #pragma once
 
 #include <optional>
@@ -29,6 +37,7 @@
 #include "core/surface/surface.h"
 #include "core/topology/contour_base_mesh.h"
 #include "core/topology/critical_points.h"
+#include "core/topology/fixed_critical_points.h"
 #include "core/topology/topology_event.h"
 
 namespace dynamesh {
@@ -54,7 +63,9 @@ struct TopologyCheck {
 
 class TopologyMonitor {
  public:
-  explicit TopologyMonitor(const ContourBaseOptions& grid = {});
+  // `resolution`: pairs of fixed critical points closer in value than this are cancelled (the
+  // mesh's error bound T; fixed_critical_points.h).
+  explicit TopologyMonitor(const ContourBaseOptions& grid = {}, double resolution = 0.0);
 
   // The mesh was (re)built for the surface at its current time.
   void reset(const ImplicitSurface& surface, const Mesh48& mesh);
@@ -64,6 +75,11 @@ class TopologyMonitor {
   void mesh_rebuilt(const Mesh48& mesh) { mesh_topology_ = summarize_topology(mesh); }
   // The watching grid's spacing (its largest cell side) at the last reset() or check().
   double spacing() const { return spacing_; }
+  // Watching a surface with fixed critical points of which none lies in its animation's range:
+  // its topology cannot change.
+  bool idle() const { return fixed_ != nullptr && fixed_->points.empty(); }
+  // The fixed critical points watched (nullptr: a grid is searched every step).
+  const FixedCriticalPoints* fixed_points() const { return fixed_; }
   // A level L for a re-base's contour of F = L (ContourBaseOptions::level) on a grid of cell
   // diagonal `diagonal`: every critical point found at the last check keeps its side, F - L
   // of the sign of F, by at least `fraction` of the bound within which that grid's
@@ -73,8 +89,12 @@ class TopologyMonitor {
 
  private:
   ContourGrid grid_for(const ImplicitSurface& surface) const;
+  TopologyCheck check_fixed(const FixedCriticalField& field, double time);
 
   ContourBaseOptions grid_options_;
+  double resolution_ = 0.0;
+  const FixedCriticalPoints* fixed_ = nullptr;  // owned by the surface
+  double previous_offset_ = 0.0;
   std::vector<CriticalPoint> previous_;
   double previous_time_ = 0.0;
   MeshTopologySummary mesh_topology_;

@@ -26,7 +26,7 @@ void BM_ReadNifti(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadNifti)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Read + segment + distance transform, with the stage times as counters.
+// Read + segment + distance transform + critical points, with the stage times as counters.
 void BM_MriPreprocess(benchmark::State& state) {
   if (!have_colin(state)) return;
   MriTimings t;
@@ -37,6 +37,7 @@ void BM_MriPreprocess(benchmark::State& state) {
   state.counters["read_s"] = t.read;
   state.counters["segment_s"] = t.segment;
   state.counters["distance_s"] = t.distance;
+  state.counters["critical_points_s"] = t.critical_points;  // issue 16's search, once per load
 }
 BENCHMARK(BM_MriPreprocess)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

@@ -49,6 +49,22 @@ inline std::string slurp_file(const std::filesystem::path& p) {
   return s.str();
 }
 
+// The run's JSON summary: the last line of stdout that starts with '{' (the summary is one
+// line; a JSON object within it, as each of `topology_events`, or a CSV on stdout before it,
+// must not be taken for it). A discarded value when there is none or it does not parse.
+inline nlohmann::json summary_json(const std::string& out) {
+  std::size_t end = out.size();
+  while (end > 0) {
+    const std::size_t newline = out.rfind('\n', end - 1);
+    const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
+    if (start < end && out[start] == '{')
+      return nlohmann::json::parse(out.substr(start, end - start), nullptr, false);
+    if (newline == std::string::npos) break;
+    end = newline;
+  }
+  return nlohmann::json(nlohmann::json::value_t::discarded);
+}
+
 struct CliRun {
   int status = -1;
   std::string out, err;
@@ -87,11 +103,7 @@ inline CliRun run_cli(const std::vector<std::string>& args, const std::string& c
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.out = slurp_file(stem + ".out");
   r.err = slurp_file(stem + ".err");
-  if (r.status == 0) {
-    const auto start = r.out.rfind('{');
-    if (start != std::string::npos)
-      r.json = nlohmann::json::parse(r.out.substr(start), nullptr, false);
-  }
+  if (r.status == 0) r.json = summary_json(r.out);
   return r;
 }
 

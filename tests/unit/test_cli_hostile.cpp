@@ -282,18 +282,13 @@ TEST(CliHostile, HugeDensityIsRefusedByTheSampleBudget) {
   expect_refused({"run", "--scene", "sphere", "--max-triangles", "100000000"}, "--max-memory");
 }
 
-nlohmann::json last_json(const std::string& out) {
-  const auto start = out.rfind('{');
-  return nlohmann::json::parse(out.substr(start));
-}
-
 TEST(CliHostile, TimeBudgetStopsTheRunAndIsReported) {
   // 2000 steps of the sinc scene take far longer than a second on any machine.
   const Outcome r =
       run({"run", "--scene", "sinc", "--steps", "2000", "--max-seconds", "1", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_LT(r.seconds, 8.0);
-  const nlohmann::json j = last_json(r.out);
+  const nlohmann::json j = test::summary_json(r.out);
   EXPECT_TRUE(j["time_budget_hit"].get<bool>());
   EXPECT_LT(j["steps_done"].get<int>(), 2000);
   EXPECT_NE(r.err.find("the time budget (--max-seconds 1) stopped the run after"),
@@ -302,8 +297,8 @@ TEST(CliHostile, TimeBudgetStopsTheRunAndIsReported) {
   // Without the budget the same run is not reported as stopped.
   const Outcome full = run({"run", "--scene", "sinc", "--steps", "2", "--quiet"});
   ASSERT_EQ(full.status, 0) << full.err;
-  EXPECT_FALSE(last_json(full.out)["time_budget_hit"].get<bool>());
-  EXPECT_EQ(last_json(full.out)["steps_done"].get<int>(), 2);
+  EXPECT_FALSE(test::summary_json(full.out)["time_budget_hit"].get<bool>());
+  EXPECT_EQ(test::summary_json(full.out)["steps_done"].get<int>(), 2);
 }
 
 TEST(CliHostile, SampleBudgetStopsRefinementAndIsReported) {
@@ -312,7 +307,7 @@ TEST(CliHostile, SampleBudgetStopsRefinementAndIsReported) {
   const Outcome r = run({"run", "--scene", "sphere", "--steps", "0", "--density", "10",
                          "--max-samples", "2000", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  const nlohmann::json j = last_json(r.out);
+  const nlohmann::json j = test::summary_json(r.out);
   EXPECT_TRUE(j["sample_budget_hit"].get<bool>());
   // A split adds at most two faces' worth of samples (256 each) past the check.
   EXPECT_LE(j["samples"].get<double>(), 2000 + 4 * 256);
@@ -322,8 +317,8 @@ TEST(CliHostile, SampleBudgetStopsRefinementAndIsReported) {
   const Outcome free =
       run({"run", "--scene", "sphere", "--steps", "0", "--density", "10", "--quiet"});
   ASSERT_EQ(free.status, 0) << free.err;
-  EXPECT_FALSE(last_json(free.out)["sample_budget_hit"].get<bool>());
-  EXPECT_GT(last_json(free.out)["samples"].get<double>(), 2000);
+  EXPECT_FALSE(test::summary_json(free.out)["sample_budget_hit"].get<bool>());
+  EXPECT_GT(test::summary_json(free.out)["samples"].get<double>(), 2000);
 }
 
 // In-range scene parameters that hung or gave garbage (sinc kappa = 10, twist r = 5, h = 0.05,
@@ -351,7 +346,7 @@ TEST(CliHostile, TheHardestEndsOfTheSceneRangesRun) {
   for (const auto& [scene, kv] : ends) {
     const Outcome r = run({"run", "--scene", scene, "--param", kv, "--steps", "5", "--quiet"}, 120);
     ASSERT_EQ(r.status, 0) << scene << " " << kv << "\n" << r.err;
-    const nlohmann::json j = last_json(r.out);
+    const nlohmann::json j = test::summary_json(r.out);
     EXPECT_LE(j["worst_max_sample_error"].get<double>(), 0.008 + 0.002) << scene << " " << kv;
     EXPECT_FALSE(j["budget_hit"].get<bool>()) << scene << " " << kv;
     EXPECT_FALSE(j["sample_budget_hit"].get<bool>()) << scene << " " << kv;
@@ -393,7 +388,7 @@ TEST(CliHostile, MemoryIsGivenBackWhenTheMeshShrinks) {
   const Outcome r =
       run({"run", "--scene", "sphere", "--keyframes", "0,1,0", "--steps", "20", "--quiet"}, 120);
   ASSERT_EQ(r.status, 0) << r.err;
-  const nlohmann::json j = last_json(r.out);
+  const nlohmann::json j = test::summary_json(r.out);
   ASSERT_GT(j["peak_triangles"].get<int>(), 20000);
   EXPECT_LT(j["triangles"].get<int>(), 2000);
   const double end = j["resident_mb"].get<double>(), peak = j["peak_resident_mb"].get<double>();

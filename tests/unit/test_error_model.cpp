@@ -128,5 +128,31 @@ TEST(EdgePeak, FindsAQuarticResidualsPeak) {
   EXPECT_GT(off_midpoint, 30) << "the trials must include peaks well off the midpoint";
 }
 
+// On a scalar residual (implicit surfaces, r = (x, 0, 0)) edge_peak takes |x| for the norm:
+// it must report exactly what the norm gives on the same lattice (t = k / 64, the quartic
+// through the quarter points), bit for bit, so that no reading changes.
+TEST(EdgePeak, ScalarResidualReadsExactlyAsItsNorm) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double scale = std::pow(10.0, -12.0 + 12.0 * (trial % 7) / 6.0);
+    const double a = scale * n(rng), b = scale * n(rng), c = scale * n(rng);
+    const auto r = [&](double t) { return Vec3(t * (1 - t) * (a + t * b + t * t * c), 0, 0); };
+    const Vec3 quarter = r(0.25), half = r(0.5), three_quarters = r(0.75);
+    const EdgePeak peak = edge_peak(quarter, half, three_quarters);
+    // The lattice and the interpolant as error_model.h states them, with Eigen's norm.
+    const Vec3 q0 = half * 4.0, qm = quarter * (16.0 / 3.0), qp = three_quarters * (16.0 / 3.0);
+    const Vec3 slope = 0.5 * (qp - qm), bend = 0.5 * (qp + qm) - q0;
+    double best = 0.0, best_t = 0.5;
+    for (int k = 1; k < 64; ++k) {
+      const double t = k / 64.0, s = 4.0 * t - 2.0;
+      const double value = t * (1.0 - t) * (q0 + s * slope + s * s * bend).norm();
+      if (value > best) best = value, best_t = t;
+    }
+    EXPECT_EQ(peak.value, best) << trial;
+    EXPECT_EQ(peak.t, best_t) << trial;
+  }
+}
+
 }  // namespace
 }  // namespace dynamesh

@@ -130,9 +130,7 @@ std::vector<std::string> example_args(const std::string& name) {
 
 // The JSON summary: the last line of stdout.
 nlohmann::json summary_of(const CliResult& r) {
-  const std::size_t end = r.out.find_last_not_of('\n');
-  const std::size_t start = r.out.rfind('\n', end);
-  return nlohmann::json::parse(r.out.substr(start == std::string::npos ? 0 : start + 1));
+  return test::summary_json(r.out);
 }
 
 fs::path scratch(const std::string& name) {

@@ -69,7 +69,8 @@ TEST(MriScene, BuildsFromTheVolumeOptionWithOverridesInOneSegmentation) {
   };
   auto surface = make_scene("mri", {{"threshold", 30.0}, {"depth_max", 8.0}},
                             {{"volume", test::write_ball_file("mri_scene")}}, progress);
-  EXPECT_EQ(stages, (std::vector<std::string>{"reading", "segmenting", "distance transform"}));
+  EXPECT_EQ(stages, (std::vector<std::string>{"reading", "segmenting", "distance transform",
+                                              "critical points"}));
   auto& mri = dynamic_cast<MriSurface&>(*surface);
   EXPECT_EQ(mri.time(), 0.0);
   EXPECT_EQ(mri.depth_max(), 8.0);

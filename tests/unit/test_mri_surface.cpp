@@ -158,7 +158,8 @@ TEST(MriColin27, BrainMaskAndLayers) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RecordProperty("preprocessing_seconds", std::to_string(seconds));
-  EXPECT_EQ(stages, (std::vector<std::string>{"reading", "segmenting", "distance transform"}));
+  EXPECT_EQ(stages, (std::vector<std::string>{"reading", "segmenting", "distance transform",
+                                              "critical points"}));
 
   // Colin27 lives in MNI space, about 15% larger than a native brain: BET kept 1.74 l of
   // non-zero voxels. The solid mask (sulci bridged by the closing, ventricles filled) must be

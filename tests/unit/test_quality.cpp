@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "core/mesh/base_meshes.h"
 #include "test_smoothing_support.h"
@@ -101,6 +102,38 @@ TEST(Quality, SurvivorDisplacementOnGrowingSphere) {
     EXPECT_EQ(s.kept_fraction, static_cast<double>(s.vertices_kept) /
                                    static_cast<double>(s.vertices - s.splits + s.welds));
   }
+}
+
+// angles_within decides from cosines where it can: it must give angle_range_deg's verdict on
+// every triangle, including those with an angle within rounding of a limit (built at 10 and 160
+// degrees, and a hair either side) and degenerate ones.
+TEST(Quality, AnglesWithinGivesAngleRangesVerdict) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto verdict = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto r = angle_range_deg(a, b, c);
+    return !(r[0] < 10.0 || r[1] > 160.0);
+  };
+  int near_limit = 0, inside = 0, outside = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    if (trial % 4 == 1) {
+      // An angle at a of 10 or 160 degrees, give or take a few ulps of the angle.
+      const double limit = (trial % 8 == 1 ? 10.0 : 160.0) * M_PI / 180.0;
+      const double angle = limit * (1.0 + (trial % 5 - 2) * 1e-15);
+      const Vec3 x = (b - a).normalized(), z = x.cross(c - a).normalized(), y = z.cross(x);
+      c = a + (0.3 + 0.7 * std::abs(u(rng))) * (std::cos(angle) * x + std::sin(angle) * y);
+      ++near_limit;
+    } else if (trial % 4 == 2) {
+      c = trial % 8 == 2 ? a : a + 0.5 * (b - a);  // degenerate: a repeated corner, collinear
+    }
+    const bool expected = verdict(a, b, c);
+    (expected ? inside : outside) += 1;
+    EXPECT_EQ(angles_within(a, b, c, 10.0, 160.0), expected) << trial;
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(outside, 1000);
+  EXPECT_EQ(near_limit, 5000);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
 #include "core/geometry/tangential_smoothing.h"
+#include "core/parallel.h"
 #include "core/surface/projection.h"
 #include "core/surface/scene_registry.h"
 #include "scene_run.h"
@@ -168,8 +169,8 @@ TEST(FrameReuse, AdapterStepsTakeTheSkips) {
 }
 
 // A mesh with folds and slivers: random vertices pushed off in random directions.
-Mesh48 damaged_mesh(const ImplicitSurface& s) {
-  Mesh48 mesh = refined_mesh(s, 5);
+Mesh48 damaged_mesh(const ImplicitSurface& s, int levels = 5) {
+  Mesh48 mesh = refined_mesh(s, levels);
   std::mt19937 rng(7);
   std::normal_distribution<double> gauss(0.0, 1.0);
   const double edge = mean_edge(mesh);
@@ -214,6 +215,65 @@ TEST(FoldScreenAround, SameVerdictsAsTheFullScreen) {
   ASSERT_FALSE(folded_expected.empty());
   EXPECT_EQ(folded_around, folded_expected);
   EXPECT_EQ(slivers_around, slivers_expected);
+}
+
+// The screen's angle verdict against an independent measurement: each face's three angles by
+// atan2 (no squared cosines, no choice of corner). Every face below the 10-degree floor is
+// reported (as a sliver, or as folded, which takes precedence), and every reported sliver is
+// below it; away from the floor by 1e-9 degrees, where rounding could go either way. On the
+// damaged mesh at two sizes: below kParallelMin faces the screen's passes run fused, above it
+// in parallel (the other FoldScreen tests' meshes are all above it).
+TEST(FoldScreen, SliversAreTheFacesBelowTheFloorMeasuredIndependently) {
+  MovedEllipsoid s;
+  for (int levels : {3, 4}) {
+    const Mesh48 mesh = damaged_mesh(s, levels);
+    std::vector<Face> folded, slivers;
+    find_bad_faces(mesh, s, 10.0, folded, slivers);
+    std::vector<std::uint8_t> reported(mesh.face_capacity(), 0);
+    for (Face f : folded) reported[f.idx] = 1;
+    for (Face f : slivers) reported[f.idx] = 2;
+    std::size_t below = 0;
+    for (Face f : mesh.live_faces()) {
+      const auto v = mesh.vertices(f);
+      double smallest = 180.0;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3 u = mesh.position(v[static_cast<std::size_t>((i + 1) % 3)]) -
+                       mesh.position(v[static_cast<std::size_t>(i)]);
+        const Vec3 w = mesh.position(v[static_cast<std::size_t>((i + 2) % 3)]) -
+                       mesh.position(v[static_cast<std::size_t>(i)]);
+        smallest = std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / M_PI);
+      }
+      if (smallest < 10.0 - 1e-9) {
+        ++below;
+        EXPECT_NE(reported[f.idx], 0) << "face " << f.idx << " at " << smallest << " degrees";
+      }
+      if (reported[f.idx] == 2) {
+        EXPECT_LT(smallest, 10.0 + 1e-9) << "face " << f.idx << " reported as a sliver";
+      }
+    }
+    EXPECT_GT(below, 10u) << levels;
+    // Each face reported folded is turned against grad F at a corner (value_gradient, not the
+    // screen's code), and the screen around every vertex finds the same lists on either path.
+    for (Face f : folded) {
+      const auto v = mesh.vertices(f);
+      const Vec3 n = (mesh.position(v[1]) - mesh.position(v[0]))
+                         .cross(mesh.position(v[2]) - mesh.position(v[0]));
+      bool against = false;
+      for (Vertex u : v) {
+        Vec3 g;
+        s.value_gradient(mesh.position(u), g);
+        against |= n.dot(g) <= 0;
+      }
+      EXPECT_TRUE(against) << "face " << f.idx << " reported folded";
+    }
+    EXPECT_GT(folded.size(), 10u) << levels;
+    std::vector<Face> folded_around, slivers_around;
+    find_bad_faces_around(mesh, s, 10.0, mesh.live_vertices(), folded_around, slivers_around);
+    EXPECT_EQ(folded_around, folded) << levels;
+    EXPECT_EQ(slivers_around, slivers) << levels;
+    const bool parallel = mesh.face_capacity() > static_cast<std::size_t>(kParallelMin);
+    EXPECT_EQ(parallel, levels == 4) << mesh.face_capacity();
+  }
 }
 
 // Through the adapter: publishing after a screen of the changed rings only gives every step

@@ -169,6 +169,15 @@ void MriLayers::resegment(const ProgressCallback& progress) {
   report(progress, "distance transform", 1.0);
   timings_.distance = seconds_since(start);
   analyse_mask();
+  // The layers' topology changes only at D's critical points, which no depth moves (issue 16):
+  // found once here, for every depth from the surface down to the deepest point.
+  FixedCriticalPointsOptions o;
+  // 1 mm more either side: the partners of shallow pairs at the band's ends.
+  o.min_value = -max_depth_ - 1.0;
+  o.max_value = 1.0;
+  o.progress = progress;
+  critical_points_ = find_fixed_critical_points(distance_, o);
+  timings_.critical_points = critical_points_.seconds;
 }
 
 void MriLayers::analyse_mask() {

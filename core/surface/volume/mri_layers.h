@@ -12,6 +12,7 @@
 #include "core/surface/volume/progress.h"
 #include "core/surface/volume/segmentation.h"
 #include "core/surface/volume/trilinear_sampler.h"
+#include "core/topology/fixed_critical_points.h"
 
 namespace dynamesh {
 
@@ -77,13 +78,14 @@ inline constexpr double kPreprocessingBytesPerVoxel = 40.0;
 
 // Wall-clock seconds of each preprocessing stage.
 struct MriTimings {
-  double read = 0.0, segment = 0.0, distance = 0.0;
-  double total() const { return read + segment + distance; }
+  double read = 0.0, segment = 0.0, distance = 0.0, critical_points = 0.0;
+  double total() const { return read + segment + distance + critical_points; }
 };
 
 class MriLayers {
  public:
-  // Reads, segments and transforms; stages "reading", "segmenting", "distance transform"
+  // Reads, segments and transforms; stages "reading", "segmenting", "distance transform",
+  // "critical points"
   // are reported through `progress`. Throws std::runtime_error (unreadable file) or
   // std::invalid_argument (nothing segmented).
   static MriLayers build(const MriLayersOptions& options, const ProgressCallback& progress = {});
@@ -123,6 +125,9 @@ class MriLayers {
   // is non-empty and contains this point.
   Vec3 deepest_point() const { return deepest_point_; }
   double max_depth() const { return max_depth_; }
+  // D's critical points with D in [-max_depth, 0], none cancelled (fixed_critical_points.h):
+  // where some layer changes topology. Found with the distance (stage "critical points").
+  const FixedCriticalPoints& critical_points() const { return critical_points_; }
   const MriTimings& timings() const { return timings_; }
   std::string source() const { return source_; }
 
@@ -142,6 +147,7 @@ class MriLayers {
   Box3 mask_bounds_;
   Vec3 deepest_point_{Vec3::Zero()};
   double max_depth_ = 0.0;
+  FixedCriticalPoints critical_points_;
   MriTimings timings_;
 };
 

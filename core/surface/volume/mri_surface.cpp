@@ -52,16 +52,30 @@ void MriSurface::set_parameter(const std::string& name, double value) {
     } else if (name == "closing") {
       if (value == layers_.segmentation().closing_radius_mm) return;
       layers_.set_closing(value, progress_);
+      critical_points_.clear();
       depth_max_ = std::min(depth_max_, std::max(0.0, layers_.max_depth() - 1.0));
     } else if (value != layers_.options().segmentation.threshold) {
       // The same threshold again needs no work (the registry re-applies what a factory
       // already built with).
       layers_.set_threshold(value, progress_);
+      critical_points_.clear();
       depth_max_ = std::min(depth_max_, std::max(0.0, layers_.max_depth() - 1.0));
     }
     return;
   }
   throw std::invalid_argument(unknown_parameter_message(kName, name, list));
+}
+
+const FixedCriticalPoints& MriSurface::fixed_critical_points(double resolution) const {
+  const auto key = std::make_pair(resolution, depth_max_);
+  auto it = critical_points_.find(key);
+  if (it != critical_points_.end()) return it->second;
+  FixedCriticalPointsOptions o;
+  o.min_value = -depth_max_;
+  o.max_value = 0.0;
+  o.min_persistence = resolution;
+  return critical_points_.emplace(key, cancel_shallow_pairs(layers_.critical_points(), o))
+      .first->second;
 }
 
 void MriSurface::set_atlas(std::shared_ptr<const LabelAtlas> atlas) {
