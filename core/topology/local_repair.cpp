@@ -207,6 +207,15 @@ bool cut_islands(const Mesh48& mesh, std::vector<char>& cut, const Vec3& centre)
   return found;
 }
 
+// Where a 4-8 split of the edge ab puts its new vertex: the midpoint projected onto F, or left
+// at the midpoint where Newton does not converge or lands farther than half the edge away (on
+// another part of F).
+Vec3 split_point_on_surface(const ImplicitSurface& surface, const Vec3& a, const Vec3& b) {
+  const Vec3 mid = 0.5 * (a + b);
+  const ProjectionResult r = project_to_surface(surface, mid);
+  return r.converged && (r.point - mid).norm() <= 0.5 * (a - b).norm() ? r.point : mid;
+}
+
 // The splits an attempt makes (levelling its border up, mending a loop's parity), made on a
 // copy of the mesh that tells no listener: they are recorded in order and made again on the
 // mesh itself only when the attempt succeeds, so that a failed attempt leaves the mesh as it was
@@ -219,9 +228,8 @@ class TrialSplits : public MeshListener {
   TrialSplits(const ImplicitSurface& surface, std::vector<char>& cut)
       : surface_(surface), cut_(cut) {}
   Vertex split(Mesh48& mesh, Face f) {
-    const Vertex v = mesh.split(f);
+    const Vertex v = mesh.split(f);  // after_split below grows the cut flags
     if (v.is_valid()) faces.push_back(f);
-    cut_.resize(mesh.face_capacity(), 0);
     return v;
   }
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
@@ -230,11 +238,8 @@ class TrialSplits : public MeshListener {
       const Bisection& b = change.halves[static_cast<std::size_t>(h)];
       cut_[b.children[1].idx] = cut_[b.children[0].idx];
     }
-    const Vec3 mid = mesh.position(change.vertex);
-    const double half =
-        0.5 * (mesh.position(change.parents[0]) - mesh.position(change.parents[1])).norm();
-    const ProjectionResult r = project_to_surface(surface_, mid);
-    if (r.converged && (r.point - mid).norm() <= half) mesh.position(change.vertex) = r.point;
+    mesh.position(change.vertex) = split_point_on_surface(
+        surface_, mesh.position(change.parents[0]), mesh.position(change.parents[1]));
   }
   void after_weld(Mesh48&, const DiamondChange&) override {}
   void after_renumber(Mesh48&, const Renumbering&) override {}
@@ -692,7 +697,6 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
       });
     if (!diamond.is_valid() || !splits.split(mesh, diamond).is_valid())
       return refuse("no cut with even border loops");
-    cut.resize(mesh.face_capacity(), 0);
     close_cut(mesh, cut);  // a child's refinement edge may lie on the border
     level_border(mesh, cut);
     mesh_loops = loops_of(border_of(mesh, cut));
@@ -825,9 +829,7 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   for (std::size_t k = 0; k < triangles.size(); ++k) exempt[k] = half_at[k] >= 0;
   PairingMendOptions mend;
   mend.split_point = [&](const Vec3& a, const Vec3& b) {
-    const Vec3 mid = 0.5 * (a + b);
-    const ProjectionResult r = project_to_surface(surface, mid);
-    return r.converged && (r.point - mid).norm() <= 0.5 * (a - b).norm() ? r.point : mid;
+    return split_point_on_surface(surface, a, b);
   };
   mend.acceptable = [&](const std::vector<Vec3>& p, const Triangle& t) {
     return facing(surface, p, t) > 0;
