@@ -633,13 +633,20 @@ void Adapter::weld_pass() {
   // again once its star is measured.
   auto weld_key = [&](const DiamondChange& plan, bool& ambiguous) {
     const ErrorRange current = star_error_range(plan);
-    const double error = samples_.weld_error(mesh_, probe_, plan, weld_ceiling(plan, current.hi));
+    const double ceiling = weld_ceiling(plan, current.hi);
+    double error = samples_.weld_error(mesh_, probe_, plan, ceiling);
     const bool allowed = weld_allowed(plan, error, current.hi);
     ambiguous = allowed && current.lo < current.hi && !weld_allowed(plan, error, current.lo);
-    if (ambiguous) return std::numeric_limits<double>::quiet_NaN();
+    constexpr double kNoWeld = std::numeric_limits<double>::quiet_NaN();
+    if (ambiguous) return kNoWeld;
     if (allowed) return pathological_star(plan) ? -1.0 - error : error;
-    if (error <= guard_limit && pathological_star(plan)) return -1.0 - error;
-    return std::numeric_limits<double>::quiet_NaN();
+    if (error > guard_limit || !pathological_star(plan)) return kNoWeld;
+    // Above the ceiling weld_error stopped early: `error` is only a lower bound of the
+    // post-weld error (the ceiling is below T + eps when the star reads below (T + eps) / 1.05).
+    // The guard must see the error itself up to its own limit, else it welds a star that
+    // reads above T + eps once welded (and is split straight back). Rare: measured again.
+    if (error > ceiling) error = samples_.weld_error(mesh_, probe_, plan, guard_limit);
+    return error <= guard_limit ? -1.0 - error : kNoWeld;
   };
   auto decided_key = [&](const DiamondChange& plan) {
     bool ambiguous = false;
