@@ -8,7 +8,8 @@
 // share with a vertex that moved more than a quarter of the face's shortest edge this step
 // (the predictor's former guard, which measured all of those whatever their bound said); the
 // steps that renumbered the mesh (AdaptOptions::renumber), the median renumbering time, and
-// the share of scattered faces left (spatial_order.h).
+// the share of scattered faces left (spatial_order.h); the share of curvature frames the
+// smoothing reused (tangential_smoothing.cpp, frame_reusable).
 //
 // BM_MillionFacePass: why the per-face passes cost what they do at this size. One pass over
 // the adapted mesh's faces as the step's passes are built (read the three corners, a cross
@@ -78,7 +79,7 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   MillionScene scene(threshold);
   Adapter& adapter = *scene.adapter;
   std::vector<double> wall, cpu, project, smooth, sample, weld, split;
-  double measured = 0, faces = 0, moved = 0, guarded = 0, renumbered = 0;
+  double measured = 0, faces = 0, moved = 0, guarded = 0, renumbered = 0, reused = 0, vertices = 0;
   std::vector<double> renumber;
   for (auto _ : state) {
     const std::vector<Vec3> before = adapter.mesh().positions();
@@ -95,6 +96,8 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
     renumber.push_back(st.seconds.renumber);
     renumbered += st.renumbered;
     measured += static_cast<double>(st.faces_measured);
+    reused += static_cast<double>(st.frames_reused);
+    vertices += static_cast<double>(st.vertices);
     guarded += static_cast<double>(adapter.predictor().guarded());
     faces += static_cast<double>(st.triangles);
     moved += moved_share(adapter.mesh(), before) * static_cast<double>(st.triangles);
@@ -111,6 +114,7 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
   state.counters["renumbered_steps"] = renumbered;
   state.counters["scattered_share"] = scattered_face_share(adapter.mesh());
   state.counters["measured_share"] = measured / faces;
+  state.counters["frames_reused_share"] = reused / vertices;
   state.counters["moved_share"] = moved / faces;
   state.counters["guarded_share"] = guarded / faces;
   state.counters["curvature_radius"] = adapter.predictor().curvature_radius();
