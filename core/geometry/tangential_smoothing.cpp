@@ -32,6 +32,7 @@ struct RingSum {
 struct CachedFrame {
   PrincipalCurvatures k;
   Vec3 at{Vec3::Zero()};           // where it was evaluated
+  Vec3 rest{Vec3::Zero()};         // its rest-space point then (surfaces with a rest map)
   Vec3 mesh_normal{Vec3::Zero()};  // the vertex's unit mesh normal then
   std::uint64_t call = 0;          // smooth_once call it was evaluated in (+1; 0 = none)
 };
@@ -44,12 +45,12 @@ struct SmoothingWorkspace::Buffers {
   std::vector<Vec3> position;
   std::vector<Vec2> uv;
   std::vector<std::uint8_t> moved;
-  std::vector<double> value;                    // implicit: F where the moved vertex landed
-  std::vector<Vec3> gradient;                   // ... and grad F (SmoothingWorkspace::landed)
-  std::vector<Vec3> centroid;                   // of each vertex's one-ring
-  std::vector<Vec3> mesh_normal;                // unit, area-weighted (zero if degenerate)
-  std::vector<double> mean_edge;                // mean length of the ring's edges
-  std::vector<CachedFrame> cached;              // frame reuse (SmoothingWorkspace)
+  std::vector<double> value;        // implicit: F where the moved vertex landed
+  std::vector<Vec3> gradient;       // ... and grad F (SmoothingWorkspace::landed)
+  std::vector<Vec3> centroid;       // of each vertex's one-ring
+  std::vector<Vec3> mesh_normal;    // unit, area-weighted (zero if degenerate)
+  std::vector<double> mean_edge;    // mean length of the ring's edges
+  std::vector<CachedFrame> cached;  // frame reuse (SmoothingWorkspace)
   // Each vertex's turn to be evaluated afresh (frame_reusable (a)): its id modulo
   // kFrameReuseCalls when its slot was made, kept through a renumbering.
   std::vector<std::uint8_t> phase;
@@ -171,7 +172,13 @@ PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v)
 //       kFrameReuseCalls when the slot was made), so no frame lives longer;
 //   (b) the vertex moved at most kFrameReuseAngle / |k|max since (so that, on the surface as
 //       it was, its normal turned by at most kFrameReuseAngle radians) and at most
-//       kFrameReuseAngle times its ring's mean edge length (a sudden jump, a flat region);
+//       kFrameReuseAngle times its ring's mean edge length (a sudden jump, a flat region).
+//       On a surface with a rest map (ImplicitSurface::has_rest_map) the move that counts is
+//       the vertex's slide over the material, measured in rest space: the rest of its move
+//       carries the frame with the material, which turns it (seen by (c)) but does not move
+//       it across the surface's shape. The whole move scaled with the mesh, not with the
+//       surface: at 10^6 triangles (capsule-bend, a step carrying a vertex ~3e-3, about an
+//       edge) it let only 13-16% of the frames be reused;
 //   (c) its mesh normal (area-weighted, of its one-ring) turned by at most kFrameReuseAngle
 //       since: the mesh follows the surface, so this sees the surface turning under a vertex
 //       that itself barely moved (rotation about an axis through it).
@@ -193,12 +200,13 @@ void grow_phases(Work& w, std::size_t capacity) {
     w.phase.push_back(static_cast<std::uint8_t>(i % kFrameReuseCalls));
 }
 
-bool frame_reusable(const Work& w, std::size_t i, const Vec3& p) {
+// `rest`: the vertex's rest-space point, or nothing (no rest map: the whole move counts).
+bool frame_reusable(const Work& w, std::size_t i, const Vec3& p, const Vec3* rest) {
   const CachedFrame& c = w.cached[i];
   if (c.call == 0 || (w.phase[i] + w.calls) % kFrameReuseCalls == 0 ||
       w.calls + 1 - c.call >= kFrameReuseCalls)
     return false;
-  const double moved = (p - c.at).norm();
+  const double moved = rest ? (*rest - c.rest).norm() : (p - c.at).norm();
   const double kmax = std::max(std::abs(c.k.k1), std::abs(c.k.k2));
   if (moved * kmax > kFrameReuseAngle || moved > kFrameReuseAngle * w.mean_edge[i]) return false;
   const Vec3& n = w.mesh_normal[i];
@@ -214,6 +222,8 @@ void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingO
   }
   double lo = 1e300, hi = 0.0;
   std::size_t reused = 0;
+  const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface);
+  const bool material = w.reuse && implicit && implicit->has_rest_map();
 #pragma omp parallel for schedule(dynamic, 512) reduction(min   \
                                                           : lo) \
     reduction(max                                               \
@@ -223,12 +233,14 @@ void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingO
     if (!mesh.is_alive(v)) continue;
     const auto k = static_cast<std::size_t>(i);
     Frame& f = w.frame[k];
-    if (w.reuse && frame_reusable(w, k, mesh.position(v))) {
+    const Vec3 rest = material ? implicit->to_rest(mesh.position(v)) : Vec3::Zero();
+    if (w.reuse && frame_reusable(w, k, mesh.position(v), material ? &rest : nullptr)) {
       f.k = w.cached[k].k;
       ++reused;
     } else {
       f.k = curvature_of(surface, mesh, v);
-      if (w.reuse) w.cached[k] = CachedFrame{f.k, mesh.position(v), w.mesh_normal[k], w.calls + 1};
+      if (w.reuse)
+        w.cached[k] = CachedFrame{f.k, mesh.position(v), rest, w.mesh_normal[k], w.calls + 1};
     }
     f.l1 = std::abs(f.k.k1);
     f.l2 = std::abs(f.k.k2);
