@@ -21,11 +21,17 @@ namespace {
 // seam's edge size, between half a cell and three quarters of one (local_repair.h; a whole
 // cell left the narrow blobs' new neck faces so large that their sparse samples missed the
 // error next to it: dense error 1.11 (T + eps) in the step after the merge).
-LocalRepairOptions local_repair_options(double cell) {
+// The repair's splits put their vertices where the adapter's tracker will when they are made
+// on the mesh (Tracker::after_split): the repair plans on those positions (local_repair.h).
+LocalRepairOptions local_repair_options(double cell, const SurfaceProbe& probe) {
   LocalRepairOptions o;
   o.radius = 2.0 * cell;
   o.spacing = 0.5 * cell;
   o.max_spacing = 0.75 * cell;
+  o.place_split_vertex = [&probe](Mesh48& mesh, const DiamondChange& change) {
+    probe.place_split_vertex(mesh, change);
+    probe.project_split_vertex(mesh, change);
+  };
   return o;
 }
 
@@ -82,7 +88,7 @@ void Adapter::check_topology() {
 bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
-  const LocalRepairOptions o = local_repair_options(topology_->spacing());
+  const LocalRepairOptions o = local_repair_options(topology_->spacing(), probe_);
   std::size_t repaired = 0;
   for (const TopologyEvent& e : check.events) {
     if (e.kind == TopologyEventKind::kMismatch) {
@@ -255,7 +261,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   for (const Face f : folded)
     for (const Vertex v : mesh_.vertices(f)) centre += mesh_.position(v), ++corners;
   centre /= static_cast<double>(corners);
-  const LocalRepairOptions o = local_repair_options(topology_->spacing());
+  const LocalRepairOptions o = local_repair_options(topology_->spacing(), probe_);
   for (const Face f : folded)  // one patch: the folds together, within half the cut
     for (const Vertex v : mesh_.vertices(f))
       if ((mesh_.position(v) - centre).norm() > 0.5 * o.radius) return false;

@@ -39,10 +39,10 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
       const Vertex a = v[static_cast<std::size_t>(j)], b = v[static_cast<std::size_t>((j + 1) % 3)];
       const double length2 = (mesh.position(a) - mesh.position(b)).squaredNorm();
       const double moved2 = (displacement[a.idx] - displacement[b.idx]).squaredNorm();
-      if (!(length2 > 0)) continue;
       // strain2 * length2 < moved2 decides without a division (false for NaN, ignored as
-      // before); the division only on a new maximum, a few times per pass.
-      if (strain2 * length2 < moved2) strain2 = moved2 / length2;
+      // before); the division only on a new maximum, a few times per pass. Edges of no length
+      // are skipped; one branch per edge, not two (both tests are taken as one).
+      if ((length2 > 0) & (strain2 * length2 < moved2)) strain2 = moved2 / length2;
     }
   }
   const double strain = std::sqrt(strain2);

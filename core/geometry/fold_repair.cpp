@@ -1,8 +1,10 @@
 #include "core/geometry/fold_repair.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "core/geometry/mesh_quality.h"
 #include "core/geometry/surface_move.h"
@@ -28,22 +30,32 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 // Whether the triangle's smallest angle is below the angle whose cosine is `cos_limit` > 0
-// (a degenerate triangle is): this runs on every face of every frame, so without a square root,
-// a division or a data-dependent branch. The smallest angle is below the limit when some angle
-// is: at a corner between edges u, w, u.w > cos_limit |u| |w|, i.e. u.w > 0 and
+// (a degenerate triangle is), given its edges e1 = b - a, e2 = c - a (the face normal's) and
+// bc = c - b: this runs on every face of every frame, so without a square root, a division or
+// a data-dependent branch. The smallest angle is below the limit when some angle is: at a
+// corner between edges u, w, u.w > cos_limit |u| |w|, i.e. u.w > 0 and
 // (u.w)^2 > cos_limit^2 |u|^2 |w|^2. All three corners are tested and or-ed: picking the corner
 // opposite the shortest edge first (as this did until 2026-11-24) was a branch the processor
 // mispredicted on many faces, the screen's most sampled instruction on twist (perf,
-// BM_SafeguardChecks).
-bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  const double at_a = -ab.dot(ca), at_b = -ab.dot(bc), at_c = -ca.dot(bc);
+// BM_SafeguardChecks). Inlined into the screen's face pass, which has e1 and e2 already (as a
+// call of its own it was 20.9M of the screen's 73.9M instructions over twist's 100 steps).
+[[gnu::always_inline]] inline bool below_angle_edges(const Vec3& e1, const Vec3& e2, const Vec3& bc,
+                                                     double cos_limit) {
+  const double lab = e1.squaredNorm(), lbc = bc.squaredNorm(), lca = e2.squaredNorm();
+  const double at_a = e1.dot(e2), at_b = -e1.dot(bc), at_c = e2.dot(bc);
   const double c2 = cos_limit * cos_limit;
   const bool degenerate = !(lab * lbc * lca > 0);
   return degenerate | ((at_a > 0) & (at_a * at_a > c2 * lab * lca)) |
          ((at_b > 0) & (at_b * at_b > c2 * lab * lbc)) |
          ((at_c > 0) & (at_c * at_c > c2 * lca * lbc));
+}
+
+// The same verdict from the corners. Bit for bit what the three edges a -> b, b -> c, c -> a
+// give (as this was written until 2026-11-24): a - c is exactly -(c - a), and negating a
+// factor negates a product and a sum of products exactly, so |a - c|^2 = |e2|^2,
+// -(b - a).(a - c) = e1.e2 and -(a - c).bc = e2.bc.
+bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
+  return below_angle_edges(b - a, c - a, c - b, cos_limit);
 }
 
 // Folded against the surface: the face's normal points away from the surface normal at one
@@ -158,22 +170,24 @@ namespace {
 // Whether the screen must ask the surface about a face, given its normal and its corners'
 // summed (area-weighted) mesh normals: it is degenerate or turned more than 60 degrees from a
 // corner's mesh normal N: fn.N <= |fn| |N| / 2, tested as fn.N <= 0 or 4 (fn.N)^2 <= |fn|^2 |N|^2
-// (no square root, and no branch: nearly every face passes).
-bool suspect(const Vec3& fn, const Vec3* corner_normal) {
+// (no square root, and no branch: nearly every face passes). The corners' N and |N|^2 are the
+// buffers' (|N|^2 once per vertex rather than once per face and corner, the same number).
+bool suspect(const Vec3& fn, const FoldScreenBuffers& b, const std::array<Vertex, 3>& corners) {
   const double fn2 = fn.squaredNorm();
   bool s = !(fn2 > 0);
-  for (int c = 0; c < 3; ++c) {
-    const double d = fn.dot(corner_normal[c]);
-    s |= (d <= 0) | (4.0 * d * d <= fn2 * corner_normal[c].squaredNorm());
+  for (Vertex v : corners) {
+    const double d = fn.dot(b.vertex_normal[v.idx]);
+    s |= (d <= 0) | (4.0 * d * d <= fn2 * b.vertex_normal2[v.idx]);
   }
   return s;
 }
 
-// 1 folded, 2 sliver, 0 neither: the screen's verdict on one face, given its normal and its
-// corners' summed mesh normals. `sliver`: below_angle's verdict on the face.
-std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f, const Vec3& fn,
-                     const Vec3* corner_normal, bool sliver) {
-  if (suspect(fn, corner_normal) && folded_against_surface(mesh, surface, f)) return 1;
+// 1 folded, 2 sliver, 0 neither: the screen's verdict on face f with corners `corners`, given
+// its normal and its corners' summed mesh normals in `b`. `sliver`: below_angle's verdict.
+std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f,
+                     const std::array<Vertex, 3>& corners, const Vec3& fn,
+                     const FoldScreenBuffers& b, bool sliver) {
+  if (suspect(fn, b, corners) && folded_against_surface(mesh, surface, f)) return 1;
   return sliver ? 2 : 0;
 }
 
@@ -196,18 +210,23 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   // angle floor. Only those evaluate the surface.
   // Each face's normal and angle verdict once (in parallel), the normals summed into their
   // corners in face order (the sums, hence the verdicts, are those of a serial pass). Below
-  // kParallelMin faces (twist at 100 steps: 2k) the passes run fused, two instead of four: the
-  // screen is three quarters of what the safeguards cost on a small motion, the sub-step plan's
-  // strain pass the rest. With the branch-free below_angle, BM_SafeguardChecks went from 5.71
-  // to 5.12 ms per 100 steps (medians of 32 interleaved runs, 2-core VM at load 4, 2026-11-24).
+  // kParallelMin faces (twist at 100 steps: 2k) the face passes run fused, two instead of four:
+  // the screen is three quarters of what the safeguards cost on a small motion, the sub-step
+  // plan's strain pass the rest. With the branch-free below_angle, BM_SafeguardChecks went from
+  // 5.71 to 5.12 ms per 100 steps (medians of 32 interleaved runs, 2-core VM at load 4,
+  // 2026-11-24); with the angle test inlined on the normal's edges and each corner's |N|^2 once
+  // per vertex (a pass over the vertices), the screen's instructions over those 100 steps went
+  // from 73.9M to 61.2M (callgrind, 2026-11-24).
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   const auto nv = static_cast<std::int64_t>(mesh.vertex_capacity());
   const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
   b.normal.resize(static_cast<std::size_t>(n));
   b.kind.resize(static_cast<std::size_t>(n));
   b.vertex_normal.assign(static_cast<std::size_t>(nv), Vec3::Zero());
-  // Face i's normal, and 2 in kind[i] when it is below the angle floor (0 for dead slots).
-  auto shape = [&](std::int64_t i) {
+  b.vertex_normal2.resize(static_cast<std::size_t>(nv));
+  // Face i's normal, and 2 in kind[i] when it is below the angle floor (0 for dead slots);
+  // with `sum`, the normal summed into its corners too.
+  auto shape = [&](std::int64_t i, auto sum) {
     const Face f(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
     if (!mesh.is_alive(f)) {
@@ -216,8 +235,12 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     }
     const auto v = mesh.vertices(f);
     const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
-    b.normal[k] = (p1 - p0).cross(p2 - p0);
-    b.kind[k] = below_angle(p0, p1, p2, cos_limit) ? 2 : 0;
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    const Vec3 normal = e1.cross(e2);
+    b.normal[k] = normal;
+    b.kind[k] = below_angle_edges(e1, e2, p2 - p1, cos_limit) ? 2 : 0;
+    if constexpr (decltype(sum)::value)
+      for (Vertex c : v) b.vertex_normal[c.idx] += normal;
   };
   auto sum_into_corners = [&](std::int64_t i) {
     const Face f(static_cast<std::uint32_t>(i));
@@ -225,15 +248,16 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     for (Vertex v : mesh.vertices(f))
       b.vertex_normal[v.idx] += b.normal[static_cast<std::size_t>(i)];
   };
+  auto square_vertex_normal = [&](std::int64_t i) {
+    const auto k = static_cast<std::size_t>(i);
+    b.vertex_normal2[k] = b.vertex_normal[k].squaredNorm();
+  };
   // Face i's verdict (kind[i] from shape()).
   auto judge = [&](std::int64_t i) {
     const Face f(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
     if (!mesh.is_alive(f)) return;
-    const auto v = mesh.vertices(f);
-    const Vec3 corner_normal[3] = {b.vertex_normal[v[0].idx], b.vertex_normal[v[1].idx],
-                                   b.vertex_normal[v[2].idx]};
-    b.kind[k] = verdict(mesh, surface, f, b.normal[k], corner_normal, b.kind[k] == 2);
+    b.kind[k] = verdict(mesh, surface, f, mesh.vertices(f), b.normal[k], b, b.kind[k] == 2);
   };
   auto collect = [&](std::int64_t i) {
     const auto k = b.kind[static_cast<std::size_t>(i)];
@@ -242,13 +266,16 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   };
   if (n > kParallelMin) {
 #pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) shape(i);
+    for (std::int64_t i = 0; i < n; ++i) shape(i, std::false_type{});
     for (std::int64_t i = 0; i < n; ++i) sum_into_corners(i);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < nv; ++i) square_vertex_normal(i);
 #pragma omp parallel for schedule(dynamic, 1024)
     for (std::int64_t i = 0; i < n; ++i) judge(i);
     for (std::int64_t i = 0; i < n; ++i) collect(i);
   } else {
-    for (std::int64_t i = 0; i < n; ++i) shape(i), sum_into_corners(i);
+    for (std::int64_t i = 0; i < n; ++i) shape(i, std::true_type{});
+    for (std::int64_t i = 0; i < nv; ++i) square_vertex_normal(i);
     for (std::int64_t i = 0; i < n; ++i) judge(i), collect(i);
   }
 }
@@ -272,6 +299,7 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
   if (b.vertex_mark.size() < mesh.vertex_capacity()) {
     b.vertex_mark.resize(mesh.vertex_capacity(), 0u);
     b.vertex_normal.resize(mesh.vertex_capacity());
+    b.vertex_normal2.resize(mesh.vertex_capacity());
   }
   // A corner's mesh normal as find_bad_faces sums it (its faces' normals in ascending face
   // order, from zero), once per vertex per call; the ring (a handful of faces) is sorted by
@@ -289,6 +317,7 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
     Vec3 sum = Vec3::Zero();
     for (Face f : ring) sum += face_normal(mesh, f);
     b.vertex_normal[v.idx] = sum;
+    b.vertex_normal2[v.idx] = sum.squaredNorm();
   };
   const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
   // Every live face with a corner in `vertices`, once.
@@ -300,9 +329,7 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
       b.face_mark[f.idx] = call;
       const auto w = mesh.vertices(f);
       for (Vertex u : w) mesh_normal(u);
-      const Vec3 corner_normal[3] = {b.vertex_normal[w[0].idx], b.vertex_normal[w[1].idx],
-                                     b.vertex_normal[w[2].idx]};
-      const std::uint8_t k = verdict(mesh, surface, f, face_normal(mesh, f), corner_normal,
+      const std::uint8_t k = verdict(mesh, surface, f, w, face_normal(mesh, f), b,
                                      face_below_angle(mesh, f, cos_limit));
       if (k == 1) folded.push_back(f);
       if (k == 2) slivers.push_back(f);

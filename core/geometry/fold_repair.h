@@ -54,9 +54,10 @@ struct FoldReport {
 // allocator_policy.h), and the kernel's page faults and page clearing cost more than the
 // screen's arithmetic (issue 17's profile at 10^6 triangles).
 struct FoldScreenBuffers {
-  std::vector<Vec3> normal;         // per face slot: its area-weighted normal
-  std::vector<Vec3> vertex_normal;  // per vertex slot: its faces' normals, summed in face order
-  std::vector<std::uint8_t> kind;   // per face slot: 1 folded, 2 sliver, 0 neither
+  std::vector<Vec3> normal;            // per face slot: its area-weighted normal
+  std::vector<Vec3> vertex_normal;     // per vertex slot: its faces' normals, summed in face order
+  std::vector<double> vertex_normal2;  // per vertex slot: vertex_normal's squared norm
+  std::vector<std::uint8_t> kind;      // per face slot: 1 folded, 2 sliver, 0 neither
   // find_bad_faces_around: a face slot or vertex slot is done in this call when its mark
   // equals `call` (bumped once per call, so no array is cleared or sorted between calls).
   std::vector<std::uint32_t> face_mark, vertex_mark;

@@ -207,13 +207,17 @@ bool cut_islands(const Mesh48& mesh, std::vector<char>& cut, const Vec3& centre)
   return found;
 }
 
-// Where a 4-8 split of the edge ab puts its new vertex: the midpoint projected onto F, or left
-// at the midpoint where Newton does not converge or lands farther than half the edge away (on
-// another part of F).
-Vec3 split_point_on_surface(const ImplicitSurface& surface, const Vec3& a, const Vec3& b) {
-  const Vec3 mid = 0.5 * (a + b);
-  const ProjectionResult r = project_to_surface(surface, mid);
-  return r.converged && (r.point - mid).norm() <= 0.5 * (a - b).norm() ? r.point : mid;
+using SplitPlacement = std::function<void(Mesh48&, const DiamondChange&)>;
+
+// Puts a split's new vertex where `place` does, or (empty) at split_point_on_surface.
+void place_split(Mesh48& mesh, const DiamondChange& change, const SplitPlacement& place,
+                 const ImplicitSurface& surface) {
+  if (place) {
+    place(mesh, change);
+  } else {
+    mesh.position(change.vertex) = split_point_on_surface(surface, mesh.position(change.parents[0]),
+                                                          mesh.position(change.parents[1]));
+  }
 }
 
 // The splits an attempt makes (levelling its border up, mending a loop's parity), made on a
@@ -221,12 +225,13 @@ Vec3 split_point_on_surface(const ImplicitSurface& surface, const Vec3& a, const
 // mesh itself only when the attempt succeeds, so that a failed attempt leaves the mesh as it was
 // (on Colin27 and on the dumbbell after motion9 every attempt of the ladder failed, and each
 // could split diamonds that stayed). As they happen, a split face's new child takes its cut
-// flag (children[0] keeps the parent's slot, Mesh48.h) and the new vertex is put on F, as the
-// adapter's probe puts split vertices when the splits are made again.
+// flag (children[0] keeps the parent's slot, Mesh48.h) and the new vertex is placed by the
+// caller's rule (LocalRepairOptions::place_split_vertex), the one the mesh's listeners apply
+// when the splits are made again: the plan is made on the positions the mesh will have.
 class TrialSplits : public MeshListener {
  public:
-  TrialSplits(const ImplicitSurface& surface, std::vector<char>& cut)
-      : surface_(surface), cut_(cut) {}
+  TrialSplits(const ImplicitSurface& surface, const SplitPlacement& place, std::vector<char>& cut)
+      : surface_(surface), place_(place), cut_(cut) {}
   Vertex split(Mesh48& mesh, Face f) {
     const Vertex v = mesh.split(f);  // after_split below grows the cut flags
     if (v.is_valid()) faces.push_back(f);
@@ -238,15 +243,17 @@ class TrialSplits : public MeshListener {
       const Bisection& b = change.halves[static_cast<std::size_t>(h)];
       cut_[b.children[1].idx] = cut_[b.children[0].idx];
     }
-    mesh.position(change.vertex) = split_point_on_surface(
-        surface_, mesh.position(change.parents[0]), mesh.position(change.parents[1]));
+    place_split(mesh, change, place_, surface_);
+    born.push_back(change.vertex);
   }
   void after_weld(Mesh48&, const DiamondChange&) override {}
   void after_renumber(Mesh48&, const Renumbering&) override {}
-  std::vector<Face> faces;  // given to split(), in order
+  std::vector<Face> faces;   // given to split(), in order
+  std::vector<Vertex> born;  // every split's vertex (those split() forced first included)
 
  private:
   const ImplicitSurface& surface_;
+  const SplitPlacement& place_;
   std::vector<char>& cut_;
 };
 
@@ -606,6 +613,8 @@ const char* const kNothingToRaise = "the cut's border is level";
 // What a successful attempt does to the mesh: its splits (in order), then the surgery.
 struct RepairPlan {
   std::vector<Face> splits;
+  std::vector<Vertex> born;     // the vertices the splits made, in order
+  std::vector<Vec3> positions;  // every vertex slot's, on the copy after the surgery
   std::vector<Face> removed;
   std::vector<Vertex> existing;
   std::vector<Vec3> created;
@@ -616,8 +625,9 @@ struct RepairPlan {
 // One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam), on
 // a copy of `original`: when it succeeds, `plan` says what to do to the mesh.
 LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface,
-                          const Vec3& centre, double r, double h, double max_h, bool islands,
-                          bool raise, std::size_t grid_cells_left, RepairPlan& plan) {
+                          const SplitPlacement& place, const Vec3& centre, double r, double h,
+                          double max_h, bool islands, bool raise, std::size_t grid_cells_left,
+                          RepairPlan& plan) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -630,7 +640,7 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   Mesh48 mesh = original;
   mesh.clear_listeners();
   std::vector<char> cut(mesh.face_capacity(), 0);
-  TrialSplits splits(surface, cut);
+  TrialSplits splits(surface, place, cut);
   mesh.add_listener(&splits);
   for (const Face f : mesh.live_faces())
     for (const Vertex v : mesh.vertices(f))
@@ -877,6 +887,8 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   result.added_faces = ordered.size();
   result.spacing = h;
   plan.splits = std::move(splits.faces);
+  plan.born = std::move(splits.born);
+  plan.positions = std::move(mesh.positions());
   plan.removed = std::move(removed);
   plan.existing = std::move(existing);
   plan.created = created;
@@ -885,31 +897,68 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   return result;
 }
 
+// The vertices a replay's splits make on the mesh, after the mesh's own listeners have placed
+// them; placed here by split_point_on_surface when the caller gave no rule.
+class ReplaySplits : public MeshListener {
+ public:
+  ReplaySplits(const ImplicitSurface& surface, const SplitPlacement& place)
+      : surface_(surface), place_(place) {}
+  void after_split(Mesh48& mesh, const DiamondChange& change) override {
+    if (!place_) place_split(mesh, change, place_, surface_);
+    born.push_back(change.vertex);
+  }
+  void after_weld(Mesh48&, const DiamondChange&) override {}
+  void after_renumber(Mesh48&, const Renumbering&) override {}
+  std::vector<Vertex> born;
+
+ private:
+  const ImplicitSurface& surface_;
+  const SplitPlacement& place_;
+};
+
 // Makes a successful attempt's splits and surgery on the mesh itself, telling its listeners
 // of the splits as any split does (the surgery they learn of from the caller, Mesh48.h).
-LocalRepairResult carry_out(Mesh48& mesh, const RepairPlan& plan, LocalRepairResult result) {
+LocalRepairResult carry_out(Mesh48& mesh, const ImplicitSurface& surface,
+                            const SplitPlacement& place, RepairPlan& plan,
+                            LocalRepairResult result) {
   const auto refuse = [&](const std::string& why) {
     result.repaired = false;
     result.why_not = why;
     return result;
   };
-  // The same splits of the same mesh give the same ids (free lists included), so the surgery
-  // planned on the copy fits. (Should one fail, the splits made stay: the listeners know them.)
-  for (const Face f : plan.splits)
-    if (!mesh.split(f).is_valid()) return refuse("a split made on the copy failed on the mesh");
-  Mesh48 backup = mesh;
-  try {
-    result.new_vertices =
-        mesh.replace_region(plan.removed, plan.existing, plan.created, plan.triangles,
-                            std::vector<int>(plan.triangles.size(), plan.depth));
-  } catch (const std::logic_error& e) {
-    mesh = std::move(backup);
-    return refuse(e.what());
-  }
+  // The same splits of the same mesh give the same ids (free lists included), and the same rule
+  // puts their vertices at the same places, so the surgery planned on the copy fits. That is
+  // checked: should a split fail, or make another vertex or put it elsewhere than on the copy,
+  // the splits made stay (the listeners know them) and the mesh keeps its topology.
+  ReplaySplits replay(surface, place);
+  mesh.add_listener(&replay);
+  bool failed = false;
+  for (std::size_t k = 0; k < plan.splits.size() && !failed; ++k)
+    failed = !mesh.split(plan.splits[k]).is_valid();
+  mesh.remove_listener(&replay);
+  if (failed) return refuse("a split made on the copy failed on the mesh");
+  if (replay.born != plan.born) return refuse("the splits made other vertices than on the copy");
+  for (const Vertex v : replay.born)
+    if (mesh.position(v) != plan.positions[v.idx])
+      return refuse(
+          "a split put its vertex elsewhere than on the copy (the repair's rule is not "
+          "the mesh's listeners')");
+  // No copy kept against a failed surgery: replace_region reads only the connectivity, which is
+  // now the copy's, and the lists the copy's surgery accepted (it throws for a bug only).
+  result.new_vertices =
+      mesh.replace_region(plan.removed, plan.existing, plan.created, plan.triangles,
+                          std::vector<int>(plan.triangles.size(), plan.depth));
+  result.planned_positions = std::move(plan.positions);
   return result;
 }
 
 }  // namespace
+
+Vec3 split_point_on_surface(const ImplicitSurface& surface, const Vec3& a, const Vec3& b) {
+  const Vec3 mid = 0.5 * (a + b);
+  const ProjectionResult r = project_to_surface(surface, mid);
+  return r.converged && (r.point - mid).norm() <= 0.5 * (a - b).norm() ? r.point : mid;
+}
 
 LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
                                  const LocalRepairOptions& options) {
@@ -959,11 +1008,11 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
           for (const bool raise : {false, true}) {
             if (spent) break;
             RepairPlan plan;
-            const LocalRepairResult r =
-                attempt(mesh, surface, centre, grow * options.radius, finer * h, finer * most,
-                        ladder.islands, raise, options.max_grid_cells - cells_used, plan);
+            const LocalRepairResult r = attempt(
+                mesh, surface, options.place_split_vertex, centre, grow * options.radius, finer * h,
+                finer * most, ladder.islands, raise, options.max_grid_cells - cells_used, plan);
             cells_used += r.grid_cells;
-            if (r.repaired) return carry_out(mesh, plan, r);
+            if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
             spent = r.why_not == kBudgetSpent;
             if (r.why_not == kNothingToRaise) break;
             last = r;

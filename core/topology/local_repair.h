@@ -24,6 +24,7 @@
 //     re-base).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,16 @@ struct LocalRepairOptions {
   // analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at most
   // (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
   std::size_t max_grid_cells = std::size_t{1} << 22;
+  // Where a 4-8 split puts its new vertex, called as a listener's after_split is (the vertex at
+  // its parents' midpoint). The attempts split a copy of the mesh that tells no listener and
+  // plan the cut, the patch and the seam on the positions this gives; the successful attempt's
+  // splits are then made on the mesh itself, where its listeners place the vertices. A caller
+  // whose mesh has such a listener gives its rule here (the adapter: its probe's
+  // project_split_vertex), so that the mesh gets every vertex where the plan had it, bit for
+  // bit; a repair whose replayed splits land elsewhere is refused before its surgery. Empty:
+  // split_point_on_surface, and the repair puts the replayed vertices there itself (a mesh
+  // nobody listens to).
+  std::function<void(Mesh48&, const DiamondChange&)> place_split_vertex;
 };
 
 struct LocalRepairResult {
@@ -55,11 +66,21 @@ struct LocalRepairResult {
   int pairing_flips = 0, pairing_splits = 0;  // that mended the new triangles' matching
   std::size_t grid_cells = 0;                 // of the patch's contour grid
   std::vector<Vertex> new_vertices;
+  // Every vertex slot's position on the successful attempt's copy after its surgery: what the
+  // plan was made for, and what the mesh now holds (tests compare the two).
+  std::vector<Vec3> planned_positions;
 };
+
+// Where a split of the edge ab puts its new vertex when LocalRepairOptions::place_split_vertex
+// is empty: the midpoint projected onto F, or left at the midpoint where Newton does not
+// converge or lands farther than half the edge away (on another part of F).
+Vec3 split_point_on_surface(const ImplicitSurface& surface, const Vec3& a, const Vec3& b);
 
 // Leaves the mesh unchanged unless it returns repaired: each attempt works on a copy, and only
 // the one that succeeds is made on the mesh (its 4-8 splits, which level the cut's border or
-// mend the parity of a border loop, told to the mesh's listeners; then the surgery).
+// mend the parity of a border loop, told to the mesh's listeners; then the surgery). Should
+// the replayed splits not give the copy's vertices (ids, or positions: a place_split_vertex
+// that is not the listeners' rule), the repair is refused with the splits made.
 LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, const Vec3& centre,
                                  const LocalRepairOptions& options);
 
