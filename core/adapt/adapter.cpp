@@ -773,10 +773,13 @@ void Adapter::split_pass(bool initial) {
   // is reported (splits_held, held_depth). A larger error found on the way (a feature the coarser
   // faces' samples missed) restarts the count; an error halved restarts it from there. Only in
   // steps (an initial mesh or a re-base refines from faces far coarser than the features they span,
-  // whose error stays up until they are finer than the features).
+  // whose error stays up until they are finer than the features), and only without a topology
+  // monitor, whose events hold the splits when they cannot be followed: a repair's patch is as
+  // coarse against the new neck, and the diagonal blobs' merge tripped the bound in the step
+  // after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate).
   constexpr int kStallLevels = 4;
   constexpr double kStallFall = 0.5;
-  const bool bound = options_.hold_stalled_splits && !initial && step_ > 0;
+  const bool bound = options_.hold_stalled_splits && !initial && step_ > 0 && !topology_;
   const std::uint32_t pass = bound ? ++split_pass_id_ : 0;
   if (bound) tracker_->grow(mesh_);
   std::priority_queue<SplitEntry> queue;
