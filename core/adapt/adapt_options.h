@@ -57,6 +57,13 @@ struct AdaptOptions {
   // When an event is neither repaired nor rebuilt, hold the splits (Adapter::hold_splits) so
   // that the refinement ends; false lets it run (tests: a failed repair's own footprint).
   bool hold_splits_when_unrepaired = true;
+  // Hold, without any event, the splits of a face whose error has not fallen by half in 4
+  // bisections within one split pass (a smooth surface's falls to 1/16): where the mesh's
+  // topology is not F's and no monitor says so (events off, or a surface that does not say it
+  // may change topology) the refinement would not end (Adapter::split_pass). Then, as after an
+  // event the mesh could not follow, no face is split more than 4 bisections below the
+  // deepest (held_depth, splits_held).
+  bool hold_stalled_splits = true;
   SmoothingOptions smoothing;
   // Rounds of smoothing, measurement and settling (welds and splits until quiet) at the
   // initial time, after the first refinement (Adapter::relax): refined from the base mesh's

@@ -50,6 +50,16 @@ struct SplitEntry {
   bool operator<(const SplitEntry& o) const { return urgency < o.urgency; }  // largest on top
 };
 
+// A face's record for the event-free bound on refinement (AdaptOptions::hold_stalled_splits,
+// Adapter::split_pass): the error and depth of the ancestor its split pass last measured on
+// track, and whether the face is held (not split again while it lives).
+struct SplitLineage {
+  float error = 0.0f;
+  std::uint32_t pass = 0;  // the split pass that recorded it (0: none)
+  std::int16_t depth = 0;
+  std::uint8_t held = 0;
+};
+
 struct WeldEntry {
   double error;
   std::uint32_t vertex;
@@ -74,6 +84,10 @@ class Adapter::Tracker final : public MeshListener {
     probe_.place_split_vertex(mesh, change);
     if (!probe_.project_split_vertex(mesh, change)) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
+    for (int h = 0; h < change.count; ++h) {
+      const Bisection& b = change.halves[h];
+      lineage[b.children[1].idx] = lineage[b.children[0].idx];  // children[0] is the parent
+    }
     for (int h = 0; h < change.count; ++h)
       for (Face f : change.halves[h].children) {
         touch(f);
@@ -85,6 +99,7 @@ class Adapter::Tracker final : public MeshListener {
     grow(mesh);
     for (int h = 0; h < change.count; ++h) {
       touch(change.halves[h].children[0]);
+      lineage[change.halves[h].children[0].idx] = SplitLineage{};
       ++stamp[change.halves[h].children[1].idx];
       if (recording_ring_changes) ring_changed(mesh, change.halves[h].children[0]);
     }
@@ -92,6 +107,7 @@ class Adapter::Tracker final : public MeshListener {
   // The tracker's own per-element data, and the adapter's (its listener for those).
   void after_renumber(Mesh48&, const Renumbering& r) override {
     renumber_elements(stamp, r.face, r.n_faces);
+    renumber_elements(lineage, r.face, r.n_faces);
     renumber_elements(birth_step, r.vertex, r.n_vertices);
     renumber_handles(touched, r.face);
     renumber_handles(rings_changed, r.vertex);
@@ -115,6 +131,7 @@ class Adapter::Tracker final : public MeshListener {
 
   void grow(const Mesh48& mesh) {
     if (stamp.size() < mesh.face_capacity()) stamp.resize(mesh.face_capacity(), 0);
+    if (lineage.size() < mesh.face_capacity()) lineage.resize(mesh.face_capacity());
     if (birth_step.size() < mesh.vertex_capacity()) birth_step.resize(mesh.vertex_capacity(), 0);
   }
   void touch(Face f) {
@@ -123,6 +140,7 @@ class Adapter::Tracker final : public MeshListener {
   }
 
   std::vector<std::uint32_t> stamp;
+  std::vector<SplitLineage> lineage;  // per face slot (Adapter::split_pass)
   std::vector<std::uint64_t> birth_step;
   std::vector<Face> touched;
   // Since the last fold screen that found nothing (Adapter::publish_repaired).
@@ -206,6 +224,7 @@ const StepStats& Adapter::initialize_here() {
   surface_changed();  // remember the state the initial mesh was made for
   tracker_->current_step = 0;
   tracker_->grow(mesh_);
+  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});  // no face held
   samples_.reset(mesh_);
   stats_.seconds.project = clock.lap();
   if (options_.sampling == Sampling::kPredictive)
@@ -415,6 +434,7 @@ void Adapter::rebuild_from_base(long euler, long components) {
   mesh_.add_listener(&smoothing_workspace_);
   smoothing_workspace_.forget_frames();
   tracker_->grow(mesh_);
+  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});  // no face held
   for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
@@ -426,6 +446,9 @@ void Adapter::adopt_repair(const std::vector<Vertex>& born) {
   // are born now, every face is looked at again and its samples drawn afresh (the sampling
   // that follows in this step measures them all).
   tracker_->grow(mesh_);
+  // The faces held for an error that did not fall (split_pass) may have gone with the old
+  // topology: every face may be split again.
+  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});
   for (const Vertex v : born) tracker_->birth_step[v.idx] = step_;
   for (const Face f : mesh_.live_faces()) tracker_->touch(f);
   samples_.reset(mesh_);
@@ -743,6 +766,29 @@ void Adapter::relax() {
 }
 
 void Adapter::split_pass(bool initial) {
+  // The event-free bound (AdaptOptions::hold_stalled_splits). On a smooth surface a face's error
+  // falls as its area, by half with every bisection (error ~ curvature h^2 / 8): within one
+  // pass, a face split k times below an ancestor has about 2^-k of that ancestor's error. Where
+  // the mesh's topology is not F's (a neck F no longer has, a cavity the mesh lacks) the faces
+  // spanning the gap keep an error of about the gap's half-width however often they are split,
+  // and the split queue refined them without end (the dumbbell's split unwatched: 50,000
+  // triangles in one step; Colin27 with closing 2 at 4 mm deep: 445,000-522,000). So within a
+  // pass each face carries the error and depth of the last ancestor on track: a face
+  // kStallLevels bisections below it whose error has not fallen by half (a smooth surface's has
+  // fallen to 1/16) is held, and not split again while it lives, and from then on no face
+  // deeper than 4 bisections below the deepest now (hold_splits); the error stays above T and
+  // is reported (splits_held, held_depth). A larger error found on the way (a feature the coarser
+  // faces' samples missed) restarts the count; an error halved restarts it from there. Only in
+  // steps (an initial mesh or a re-base refines from faces far coarser than the features they span,
+  // whose error stays up until they are finer than the features), and only without a topology
+  // monitor, whose events hold the splits when they cannot be followed: a repair's patch is as
+  // coarse against the new neck, and the diagonal blobs' merge tripped the bound in the step
+  // after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate).
+  constexpr int kStallLevels = 4;
+  constexpr double kStallFall = 0.5;
+  const bool bound = options_.hold_stalled_splits && !initial && step_ > 0 && !topology_;
+  const std::uint32_t pass = bound ? ++split_pass_id_ : 0;
+  if (bound) tracker_->grow(mesh_);
   std::priority_queue<SplitEntry> queue;
   for (Face f : mesh_.live_faces()) {
     const double u = split_urgency(f, samples_.face_error(f), initial);
@@ -771,6 +817,26 @@ void Adapter::split_pass(bool initial) {
       ++stats_.splits_refused;
       if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) ++stats_.splits_held;
       continue;
+    }
+    if (bound) {
+      SplitLineage& l = tracker_->lineage[f.idx];
+      const double error = samples_.face_error(f);
+      const int depth = mesh_.depth(f);
+      if (!l.held && l.pass == pass && error > kStallFall * l.error && error <= l.error &&
+          depth - l.depth >= kStallLevels) {
+        // The faces beside it span the same gap, and each pass would give them 4 bisections
+        // more (the dumbbell unwatched: the 5,000-triangle budget by step 3): from now on, as
+        // after an event the mesh could not follow, no face is split far below the deepest.
+        l.held = 1;
+        hold_splits(/*stalled=*/true);
+      }
+      if (l.held) {
+        ++stats_.splits_refused;
+        ++stats_.splits_held;
+        continue;
+      }
+      if (l.pass != pass || error > l.error || error <= kStallFall * l.error)
+        l = {static_cast<float>(error), pass, static_cast<std::int16_t>(depth), 0};
     }
     tracker_->touched.clear();
     if (!mesh_.split(f).is_valid()) {

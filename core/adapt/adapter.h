@@ -164,7 +164,9 @@ class Adapter {
   // coarse contour resolves: the mesh then keeps its topology, as it did before events were
   // watched, with the reason among the step's repair_refusals. True when it was rebuilt.
   bool rebuild_or_keep(long euler, long components);
-  void hold_splits();
+  // From now on no face deeper than 4 bisections below the deepest is split: after an event
+  // neither repaired nor rebuilt, or (`stalled`) a face whose error did not fall (split_pass).
+  void hold_splits(bool stalled = false);
   Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();
@@ -206,6 +208,7 @@ class Adapter {
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
   int held_depth_ = -1;               // no split beyond it (hold_splits); -1: none
+  std::uint32_t split_pass_id_ = 0;   // numbers the split passes (split_pass's lineages)
   std::vector<Face> bad_faces_[2];    // folded faces and slivers (publish_repaired)
   FoldScreenBuffers fold_screen_;     // the fold screen's scratch, kept (fold_repair.h)
   std::unique_ptr<TopologyMonitor> topology_;

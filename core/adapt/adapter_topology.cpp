@@ -165,8 +165,8 @@ bool Adapter::rebuild_or_keep(long euler, long components) {
   return false;
 }
 
-void Adapter::hold_splits() {
-  if (!options_.hold_splits_when_unrepaired) return;
+void Adapter::hold_splits(bool stalled) {
+  if (!stalled && !options_.hold_splits_when_unrepaired) return;
   // A mesh that keeps a topology F no longer has cannot meet the bound where they differ: the
   // split queue refined without end towards a surface the mesh cannot reach (the dumbbell's
   // split after motion9, unrepaired: more than 13 minutes, 1.5 GB, and still in step 3; Colin27
@@ -177,7 +177,16 @@ void Adapter::hold_splits() {
   constexpr int kHeldLevels = 4;
   int deepest = 0;
   for (const Face f : mesh_.live_faces()) deepest = std::max(deepest, mesh_.depth(f));
+  if (stalled && held_depth_ >= 0) return;
   if (held_depth_ < 0) held_depth_ = deepest + kHeldLevels;
+  if (stalled) {
+    stats_.repair_refusals.push_back(
+        "a face's error did not fall by half in " + std::to_string(kHeldLevels) +
+        " bisections: the mesh's topology is not F's there, and from now on no face is split "
+        "beyond depth " +
+        std::to_string(held_depth_) + " (the deepest now is " + std::to_string(deepest) + ")");
+    return;
+  }
   stats_.repair_refusals.push_back(
       "from now on no face is split beyond depth " + std::to_string(held_depth_) +
       " (the deepest now is " + std::to_string(deepest) +
