@@ -180,7 +180,7 @@ void log_topology(std::ostream& log, const StepStats& s) {
   if (s.splits_held > 0)
     log << "topology: " << s.splits_held << " split(s) held at step " << s.step
         << " (no face split beyond depth " << s.held_depth
-        << " since an event the mesh could not follow; max error " << std::setprecision(3)
+        << ": the mesh's topology could not follow F's; max error " << std::setprecision(3)
         << s.max_error << ")\n";
   if (s.local_repairs > 0 && !s.rebuilt)
     log << "topology: repaired locally at step " << s.step << " (" << s.repair_faces_replaced
