@@ -783,10 +783,14 @@ void Adapter::split_pass(bool initial) {
   // whose error stays up until they are finer than the features), and only without a topology
   // monitor, whose events hold the splits when they cannot be followed: a repair's patch is as
   // coarse against the new neck, and the diagonal blobs' merge tripped the bound in the step
-  // after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate).
+  // after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate). And only with the vertex
+  // correction: without it (--no-geometric) the old vertices stay off the moving surface, so no
+  // split lowers the error, whatever the topology; that run stops on its own at the first step
+  // above T + eps (test CliOptions.NoGeometricStopsWhenTheMeshIsLeftBehind).
   constexpr int kStallLevels = 4;
   constexpr double kStallFall = 0.5;
-  const bool bound = options_.hold_stalled_splits && !initial && step_ > 0 && !topology_;
+  const bool bound =
+      options_.hold_stalled_splits && options_.geometric && !initial && step_ > 0 && !topology_;
   const std::uint32_t pass = bound ? ++split_pass_id_ : 0;
   if (bound) tracker_->grow(mesh_);
   std::priority_queue<SplitEntry> queue;
