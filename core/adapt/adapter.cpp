@@ -81,8 +81,7 @@ class Adapter::Tracker final : public MeshListener {
 
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
     grow(mesh);
-    probe_.place_split_vertex(mesh, change);
-    if (!probe_.project_split_vertex(mesh, change)) ++projection_failures;
+    if (!probe_.put_split_vertex(mesh, change)) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
     for (int h = 0; h < change.count; ++h) {
       const Bisection& b = change.halves[h];
@@ -129,6 +128,8 @@ class Adapter::Tracker final : public MeshListener {
     for (Vertex v : mesh.vertices(f)) rings_changed.push_back(v);
   }
 
+  // A new mesh (initial, re-based, locally repaired): no face held by split_pass, none on record.
+  void forget_lineages(const Mesh48& mesh) { lineage.assign(mesh.face_capacity(), SplitLineage{}); }
   void grow(const Mesh48& mesh) {
     if (stamp.size() < mesh.face_capacity()) stamp.resize(mesh.face_capacity(), 0);
     if (lineage.size() < mesh.face_capacity()) lineage.resize(mesh.face_capacity());
@@ -224,7 +225,7 @@ const StepStats& Adapter::initialize_here() {
   surface_changed();  // remember the state the initial mesh was made for
   tracker_->current_step = 0;
   tracker_->grow(mesh_);
-  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});  // no face held
+  tracker_->forget_lineages(mesh_);
   samples_.reset(mesh_);
   stats_.seconds.project = clock.lap();
   if (options_.sampling == Sampling::kPredictive)
@@ -434,7 +435,7 @@ void Adapter::rebuild_from_base(long euler, long components) {
   mesh_.add_listener(&smoothing_workspace_);
   smoothing_workspace_.forget_frames();
   tracker_->grow(mesh_);
-  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});  // no face held
+  tracker_->forget_lineages(mesh_);
   for (const Vertex v : mesh_.live_vertices()) tracker_->birth_step[v.idx] = step_;
   samples_.reset(mesh_);
   samples_.evaluate_all(mesh_, probe_);
@@ -448,7 +449,7 @@ void Adapter::adopt_repair(const std::vector<Vertex>& born) {
   tracker_->grow(mesh_);
   // The faces held for an error that did not fall (split_pass) may have gone with the old
   // topology: every face may be split again.
-  tracker_->lineage.assign(mesh_.face_capacity(), SplitLineage{});
+  tracker_->forget_lineages(mesh_);
   for (const Vertex v : born) tracker_->birth_step[v.idx] = step_;
   for (const Face f : mesh_.live_faces()) tracker_->touch(f);
   samples_.reset(mesh_);
@@ -832,7 +833,8 @@ void Adapter::split_pass(bool initial) {
         // more (the dumbbell unwatched: the 5,000-triangle budget by step 3): from now on, as
         // after an event the mesh could not follow, no face is split far below the deepest.
         l.held = 1;
-        hold_splits(/*stalled=*/true);
+        hold_splits("a face's error did not fall by half in " + std::to_string(kStallLevels) +
+                    " bisections: the mesh's topology is not F's there");
       }
       if (l.held) {
         ++stats_.splits_refused;

@@ -165,8 +165,9 @@ class Adapter {
   // watched, with the reason among the step's repair_refusals. True when it was rebuilt.
   bool rebuild_or_keep(long euler, long components);
   // From now on no face deeper than 4 bisections below the deepest is split: after an event
-  // neither repaired nor rebuilt, or (`stalled`) a face whose error did not fall (split_pass).
-  void hold_splits(bool stalled = false);
+  // neither repaired nor rebuilt, or (`stalled`: why) a face whose error did not fall
+  // (split_pass).
+  void hold_splits(const std::string& stalled = {});
   Mesh48 mid_run_base_mesh(long euler, long components);
   // True when the surface's time or parameters differ from the previous step's.
   bool surface_changed();

@@ -29,8 +29,7 @@ LocalRepairOptions local_repair_options(double cell, const SurfaceProbe& probe) 
   o.spacing = 0.5 * cell;
   o.max_spacing = 0.75 * cell;
   o.place_split_vertex = [&probe](Mesh48& mesh, const DiamondChange& change) {
-    probe.place_split_vertex(mesh, change);
-    probe.project_split_vertex(mesh, change);
+    probe.put_split_vertex(mesh, change);
   };
   return o;
 }
@@ -165,8 +164,10 @@ bool Adapter::rebuild_or_keep(long euler, long components) {
   return false;
 }
 
-void Adapter::hold_splits(bool stalled) {
-  if (!stalled && !options_.hold_splits_when_unrepaired) return;
+void Adapter::hold_splits(const std::string& stalled) {
+  // After an event only when the options say so; for a stalled face once (the first such face
+  // sets the depth; split_pass holds each stalled face itself).
+  if (stalled.empty() ? !options_.hold_splits_when_unrepaired : held_depth_ >= 0) return;
   // A mesh that keeps a topology F no longer has cannot meet the bound where they differ: the
   // split queue refined without end towards a surface the mesh cannot reach (the dumbbell's
   // split after motion9, unrepaired: more than 13 minutes, 1.5 GB, and still in step 3; Colin27
@@ -177,21 +178,15 @@ void Adapter::hold_splits(bool stalled) {
   constexpr int kHeldLevels = 4;
   int deepest = 0;
   for (const Face f : mesh_.live_faces()) deepest = std::max(deepest, mesh_.depth(f));
-  if (stalled && held_depth_ >= 0) return;
   if (held_depth_ < 0) held_depth_ = deepest + kHeldLevels;
-  if (stalled) {
-    stats_.repair_refusals.push_back(
-        "a face's error did not fall by half in " + std::to_string(kHeldLevels) +
-        " bisections: the mesh's topology is not F's there, and from now on no face is split "
-        "beyond depth " +
-        std::to_string(held_depth_) + " (the deepest now is " + std::to_string(deepest) + ")");
-    return;
-  }
+  const std::string from_now = "from now on no face is split beyond depth " +
+                               std::to_string(held_depth_) + " (the deepest now is " +
+                               std::to_string(deepest) + ")";
   stats_.repair_refusals.push_back(
-      "from now on no face is split beyond depth " + std::to_string(held_depth_) +
-      " (the deepest now is " + std::to_string(deepest) +
-      "): where the mesh's topology is not F's the refinement would not end, and the error "
-      "there stays above T");
+      stalled.empty() ? from_now +
+                            ": where the mesh's topology is not F's the refinement would not "
+                            "end, and the error there stays above T"
+                      : stalled + ", and " + from_now);
 }
 
 Mesh48 Adapter::mid_run_base_mesh(long euler, long components) {

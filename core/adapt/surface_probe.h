@@ -57,6 +57,12 @@ class SurfaceProbe {
   // than the edges (just after a merge) Newton or the nearest zero along the normal can land
   // on the neck's far wall, and the faces folded there are beyond the fold repair's reach.
   bool project_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
+  // Where a split puts its new vertex: place_split_vertex, then project_split_vertex (false
+  // when the projection failed). The adapter's rule, which its local repairs plan on too.
+  bool put_split_vertex(Mesh48& mesh, const DiamondChange& change) const {
+    place_split_vertex(mesh, change);
+    return project_split_vertex(mesh, change);
+  }
   void set_split_fold_guard(bool on) { split_fold_guard_ = on; }
 
   // Distance to the surface of the point with barycentric coordinates b over the triangle

@@ -50,7 +50,7 @@ struct LocalRepairOptions {
   // plan the cut, the patch and the seam on the positions this gives; the successful attempt's
   // splits are then made on the mesh itself, where its listeners place the vertices. A caller
   // whose mesh has such a listener gives its rule here (the adapter: its probe's
-  // project_split_vertex), so that the mesh gets every vertex where the plan had it, bit for
+  // put_split_vertex), so that the mesh gets every vertex where the plan had it, bit for
   // bit; a repair whose replayed splits land elsewhere is refused before its surgery. Empty:
   // split_point_on_surface, and the repair puts the replayed vertices there itself (a mesh
   // nobody listens to).
