@@ -292,35 +292,38 @@ TEST(TopologyVariantsCli, TorusPinchedTwiceInTurnFallsInTwo) {
   run_and_judge(torus_pinched_twice("torus-twice-in-turn", 0.0, 0.3, 2.0, 0.18, 20));
 }
 
+// One event of `kind` at `time`, with `before` and `after` it as (components, Euler
+// characteristic), on an F of one's own, 20 steps.
+template <long C0, long E0, long C1, long E1>
+Variant one_event(const std::string& name, const std::string& formula, const std::string& bounds,
+                  double time, const std::string& kind) {
+  Variant v;
+  v.name = name;
+  v.formula = formula;
+  v.bounds = bounds;
+  v.steps = 20;
+  v.events = {{time, kind}};
+  v.topology = [](double t, const std::vector<double>& times) {
+    return t < times[0] ? std::pair<long, long>{C0, E0} : std::pair<long, long>{C1, E1};
+  };
+  return v;
+}
+
 // The torus pinch run backwards: a bent tube whose ends meet at t = 0.5 and close into a torus
 // (a merge that makes a handle: Euler characteristic 2 -> 0, one component throughout).
 TEST(TopologyVariantsCli, BentTubeClosesIntoATorus) {
-  Variant v;
-  v.name = "tube-closes";
-  v.formula = "(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09 + 0.18*(1-t)*exp(-((x-1)^2+y^2+z^2)/0.16)";
-  v.bounds = "-1.5,-1.5,-0.5,1.5,1.5,0.5";
-  v.steps = 20;
-  v.events = {{0.5, "merge"}};
-  v.topology = [](double t, const std::vector<double>& times) {
-    return t < times[0] ? std::pair<long, long>{1, 2} : std::pair<long, long>{1, 0};
-  };
-  run_and_judge(v);
+  run_and_judge(one_event<1, 2, 1, 0>(
+      "tube-closes", "(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09 + 0.18*(1-t)*exp(-((x-1)^2+y^2+z^2)/0.16)",
+      "-1.5,-1.5,-0.5,1.5,1.5,0.5", 0.5, "merge"));
 }
 
 // A quartic F, not a sum of Gaussians: the Cassini surface |p - f|^2 |p + f|^2 = b^4 about the
 // foci f = (+-0.8, 0, 0), with b = 0.93 - 0.26 t, is one peanut for b > 0.8 and two eggs below;
 // at b = 0.8 (t = 0.5, a step time) it is a lemniscate's surface of revolution, pinched at 0.
 TEST(TopologyVariantsCli, CassiniPeanutFallsInTwo) {
-  Variant v;
-  v.name = "cassini";
-  v.formula = "(x^2+y^2+z^2)^2 - 2*0.64*(x^2-y^2-z^2) + 0.4096 - (0.93-0.26*t)^4";
-  v.bounds = "-1.6,-1,-1,1.6,1,1";
-  v.steps = 20;
-  v.events = {{0.5, "split"}};
-  v.topology = [](double t, const std::vector<double>& times) {
-    return t < times[0] ? std::pair<long, long>{1, 2} : std::pair<long, long>{2, 4};
-  };
-  run_and_judge(v);
+  run_and_judge(one_event<1, 2, 2, 4>(
+      "cassini", "(x^2+y^2+z^2)^2 - 2*0.64*(x^2-y^2-z^2) + 0.4096 - (0.93-0.26*t)^4",
+      "-1.6,-1,-1,1.6,1,1", 0.5, "split"));
 }
 
 }  // namespace
