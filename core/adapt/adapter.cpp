@@ -655,10 +655,17 @@ void Adapter::weld_pass() {
   // the criteria allow more welds the larger it is (criteria.h), so a decision that is the
   // same at both ends is the decision; otherwise the candidate is `ambiguous` and decided
   // again once its star is measured.
-  auto weld_key = [&](const DiamondChange& plan, bool& ambiguous) {
+  // `known`: the post-weld error when it was already measured in full (weld_error read no
+  // more than its ceiling) on the star's present samples and positions, else NaN. It stands
+  // for weld_error's reading at any ceiling: where that reading would be below its ceiling it
+  // is `known` itself; above, it is a lower bound that only tells "above the ceiling", as
+  // `known` does, and the guard's second reading below would be `known` again.
+  auto weld_key = [&](const DiamondChange& plan, bool& ambiguous, double& known) {
     const ErrorRange current = star_error_range(plan);
     const double ceiling = weld_ceiling(plan, current.hi);
-    double error = samples_.weld_error(mesh_, probe_, plan, ceiling);
+    const bool exact = !std::isnan(known);
+    double error = exact ? known : samples_.weld_error(mesh_, probe_, plan, ceiling);
+    if (error <= ceiling) known = error;
     const bool allowed = weld_allowed(plan, error, current.hi);
     ambiguous = allowed && current.lo < current.hi && !weld_allowed(plan, error, current.lo);
     constexpr double kNoWeld = std::numeric_limits<double>::quiet_NaN();
@@ -669,15 +676,25 @@ void Adapter::weld_pass() {
     // post-weld error (the ceiling is below T + eps when the star reads below (T + eps) / 1.05).
     // The guard must see the error itself up to its own limit, else it welds a star that
     // reads above T + eps once welded (and is split straight back). Rare: measured again.
-    if (error > ceiling) error = samples_.weld_error(mesh_, probe_, plan, guard_limit);
+    if (error > ceiling && !exact) error = samples_.weld_error(mesh_, probe_, plan, guard_limit);
     return error <= guard_limit ? -1.0 - error : kNoWeld;
+  };
+  // An ambiguous star (its key NaN, its post-weld error `known` in full: ambiguity needs the
+  // weld allowed at the range's top, so the reading was below its ceiling) is decided once
+  // its skipped faces are measured. Measuring leaves the samples where they were unless a
+  // face's pattern was densified: then the post-weld error is read again.
+  auto decide_measured = [&](const DiamondChange& plan, double known) {
+    const std::uint64_t patterns = samples_.patterns_drawn();
+    measure_star(plan);
+    if (samples_.patterns_drawn() != patterns) known = std::numeric_limits<double>::quiet_NaN();
+    bool ambiguous = false;
+    return weld_key(plan, ambiguous, known);
   };
   auto decided_key = [&](const DiamondChange& plan) {
     bool ambiguous = false;
-    const double k = weld_key(plan, ambiguous);
-    if (!ambiguous) return k;
-    measure_star(plan);
-    return weld_key(plan, ambiguous);
+    double known = std::numeric_limits<double>::quiet_NaN();
+    const double k = weld_key(plan, ambiguous, known);
+    return ambiguous ? decide_measured(plan, known) : k;
   };
   std::vector<double>& key = weld_keys_;
   std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
@@ -688,16 +705,21 @@ void Adapter::weld_pass() {
     DiamondChange plan;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
     bool a = false;
-    key[static_cast<std::size_t>(i)] = weld_key(plan, a);
+    double known = std::numeric_limits<double>::quiet_NaN();
+    const double k = weld_key(plan, a, known);
+    key[static_cast<std::size_t>(i)] = a ? known : k;  // ambiguous: its post-weld error, for now
     ambiguous[static_cast<std::size_t>(i)] = a;
   }
-  // Few (predictive sampling only): measured one star at a time.
+  // Few (predictive sampling only): measured one star at a time. Each face belongs to the
+  // star of its newest vertex only (Mesh48::plan_weld), so measuring one star changes no other
+  // star's range or samples: each is still ambiguous, with the same post-weld error.
   for (std::int64_t i = 0; i < n; ++i) {
+    if (!ambiguous[static_cast<std::size_t>(i)]) continue;
     DiamondChange plan;
-    if (!ambiguous[static_cast<std::size_t>(i)] ||
-        !mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan))
-      continue;
-    key[static_cast<std::size_t>(i)] = decided_key(plan);
+    double& k = key[static_cast<std::size_t>(i)];
+    k = mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)
+            ? decide_measured(plan, k)
+            : std::numeric_limits<double>::quiet_NaN();
   }
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};

@@ -76,6 +76,10 @@ class SampleStore final : public MeshListener {
   // `ceiling`, which is all a weld decision needs.
   double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
                     double ceiling = std::numeric_limits<double>::infinity()) const;
+  // How many patterns were drawn so far (draw_pattern is the only place a face's samples get
+  // new barycentric coordinates between splits and welds): unchanged across a measurement,
+  // every face's samples are where they were, and so is every weld_error reading.
+  std::uint64_t patterns_drawn() const { return patterns_drawn_; }
   // Draws new patterns for faces whose sample count is below half or above twice
   // max(1, D * area); returns how many faces were redrawn. Their errors need evaluating.
   std::size_t refresh_patterns(const Mesh48& mesh);
