@@ -88,24 +88,6 @@ namespace {
 
 using Work = SmoothingWorkspace::Buffers;
 
-// One edge's contribution to the ring sums of its ends a -> b (compute_ring_centroids).
-struct EdgeTerm {
-  Vec3 pa, pb;
-  double length, weight;
-};
-
-EdgeTerm edge_term(const Mesh48& mesh, Halfedge h, bool scale_invariant) {
-  const Vec3 &pa = mesh.position(mesh.from_vertex(h)), &pb = mesh.position(mesh.to_vertex(h));
-  const double length = (pa - pb).norm();
-  return {pa, pb, length, scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0};
-}
-
-Vec3 area_normal(const Mesh48& mesh, Face f) {
-  const auto v = mesh.vertices(f);
-  const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
-  return (p1 - p0).cross(p2 - p0);
-}
-
 // Vertex v's ring sum as the serial pass over the faces makes it, bit for bit: its edges in
 // ascending halfedge order (each from its lower halfedge, or its only one), its faces' normals
 // in ascending face order. For the vertices whose faces several threads summed: floating-point
@@ -145,15 +127,22 @@ RingSum serial_ring_sum(const Mesh48& mesh, Vertex v, bool scale_invariant, bool
   RingSum s;
   for (std::size_t i = 0; i < edges; ++i) {
     const Halfedge h(halfedges[i]);
-    const EdgeTerm t = edge_term(mesh, h, scale_invariant);
     if (!mesh.twin(h).is_valid()) s.boundary = 1;
-    s.sum += t.weight * (mesh.from_vertex(h) == v ? t.pb : t.pa);
-    s.weight += t.weight;
-    s.length += t.length;
+    // As compute_ring_centroids: the same operations on the same numbers.
+    const Vec3 &pa = mesh.position(mesh.from_vertex(h)), &pb = mesh.position(mesh.to_vertex(h));
+    const double length = (pa - pb).norm();
+    const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+    s.sum += weight * (mesh.from_vertex(h) == v ? pb : pa);
+    s.weight += weight;
+    s.length += length;
     ++s.edges;
   }
   if (normals)
-    for (std::size_t i = 0; i < faces; ++i) s.normal += area_normal(mesh, Face(face_ids[i]));
+    for (std::size_t i = 0; i < faces; ++i) {
+      const auto w = mesh.vertices(Face(face_ids[i]));
+      const Vec3 &p0 = mesh.position(w[0]), &p1 = mesh.position(w[1]), &p2 = mesh.position(w[2]);
+      s.normal += (p1 - p0).cross(p2 - p0);
+    }
   s.touched = 1;
   return s;
 }
@@ -191,21 +180,24 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
         if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
         const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
         if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
-        const EdgeTerm t = edge_term(mesh, h, scale_invariant);
-        sums[a.idx].sum += t.weight * t.pb;
-        sums[a.idx].weight += t.weight;
-        sums[b.idx].sum += t.weight * t.pa;
-        sums[b.idx].weight += t.weight;
-        sums[a.idx].length += t.length;
-        sums[b.idx].length += t.length;
+        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+        const double length = (pa - pb).norm();
+        const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+        sums[a.idx].sum += weight * pb;
+        sums[a.idx].weight += weight;
+        sums[b.idx].sum += weight * pa;
+        sums[b.idx].weight += weight;
+        sums[a.idx].length += length;
+        sums[b.idx].length += length;
         ++sums[a.idx].edges;
         ++sums[b.idx].edges;
       }
       if (!w.reuse) continue;
-      const Face face(static_cast<std::uint32_t>(f));
-      const Vec3 normal = area_normal(mesh, face);
-      for (Vertex x : mesh.vertices(face)) {
-        sums[x.idx].normal += normal;
+      const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
+      const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
+      const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
+      for (Vertex x : v) {
+        sums[x.idx].normal += area_normal;
         sums[x.idx].touched = 1;
       }
     }
@@ -219,18 +211,22 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
   for (std::int64_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const Vertex v(static_cast<std::uint32_t>(i));
-    const RingSum* only = &w.ring_sums[0][k];
-    int touching = 0;
-    for (std::size_t t = 0; t < static_cast<std::size_t>(team); ++t)
-      if (w.ring_sums[t][k].edges || w.ring_sums[t][k].touched)
-        only = &w.ring_sums[t][k], ++touching;
-    const RingSum total =
-        touching <= 1 ? *only : serial_ring_sum(mesh, v, scale_invariant, w.reuse);
-    w.centroid[k] = total.weight > 0 ? Vec3(total.sum / total.weight) : mesh.position(v);
-    w.boundary[k] = total.boundary;
-    const double area2 = total.normal.norm();
-    w.mesh_normal[k] = area2 > 0 ? Vec3(total.normal / area2) : Vec3(Vec3::Zero());
-    w.mean_edge[k] = total.edges ? total.length / total.edges : 0.0;
+    const RingSum* total = &w.ring_sums[0][k];
+    std::optional<RingSum> resummed;  // (not constructed unless needed)
+    if (team > 1) {
+      int touching = 0;
+      for (std::size_t t = 0; t < static_cast<std::size_t>(team); ++t)
+        if (w.ring_sums[t][k].edges || w.ring_sums[t][k].touched)
+          total = &w.ring_sums[t][k], ++touching;
+      if (touching > 1) {
+        total = &resummed.emplace(serial_ring_sum(mesh, v, scale_invariant, w.reuse));
+      }
+    }
+    w.centroid[k] = total->weight > 0 ? Vec3(total->sum / total->weight) : mesh.position(v);
+    w.boundary[k] = total->boundary;
+    const double area2 = total->normal.norm();
+    w.mesh_normal[k] = area2 > 0 ? Vec3(total->normal / area2) : Vec3(Vec3::Zero());
+    w.mean_edge[k] = total->edges ? total->length / total->edges : 0.0;
   }
 }
 
