@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "core/geometry/mesh_quality.h"
@@ -171,36 +172,43 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
     if (omp_get_thread_num() == 0) team = omp_get_num_threads();
     std::vector<RingSum>& sums = w.ring_sums[static_cast<std::size_t>(omp_get_thread_num())];
     sums.assign(nv, RingSum{});
+    // `multi`: more than one thread, so the seams need to know which sums each one touched.
+    auto face_pass = [&](auto multi) {
 #pragma omp for schedule(static)
-    for (std::int64_t f = 0; f < nf; ++f) {
-      if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
-      for (int e = 0; e < 3; ++e) {
-        const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
-        const Halfedge twin = mesh.twin(h);
-        if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
-        const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-        if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
-        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
-        const double length = (pa - pb).norm();
-        const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
-        sums[a.idx].sum += weight * pb;
-        sums[a.idx].weight += weight;
-        sums[b.idx].sum += weight * pa;
-        sums[b.idx].weight += weight;
-        sums[a.idx].length += length;
-        sums[b.idx].length += length;
-        ++sums[a.idx].edges;
-        ++sums[b.idx].edges;
+      for (std::int64_t f = 0; f < nf; ++f) {
+        if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
+        for (int e = 0; e < 3; ++e) {
+          const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
+          const Halfedge twin = mesh.twin(h);
+          if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
+          const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+          if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
+          const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+          const double length = (pa - pb).norm();
+          const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+          sums[a.idx].sum += weight * pb;
+          sums[a.idx].weight += weight;
+          sums[b.idx].sum += weight * pa;
+          sums[b.idx].weight += weight;
+          sums[a.idx].length += length;
+          sums[b.idx].length += length;
+          ++sums[a.idx].edges;
+          ++sums[b.idx].edges;
+        }
+        if (!w.reuse) continue;
+        const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
+        const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
+        const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
+        for (Vertex x : v) {
+          sums[x.idx].normal += area_normal;
+          if constexpr (decltype(multi)::value) sums[x.idx].touched = 1;
+        }
       }
-      if (!w.reuse) continue;
-      const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
-      const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
-      const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
-      for (Vertex x : v) {
-        sums[x.idx].normal += area_normal;
-        sums[x.idx].touched = 1;
-      }
-    }
+    };
+    if (threads > 1)
+      face_pass(std::true_type{});
+    else
+      face_pass(std::false_type{});
   }
   w.centroid.resize(nv);
   w.boundary.resize(nv);
