@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.h"
 
@@ -28,21 +29,40 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
   MotionEstimate e;
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   double strain2 = 0.0;  // the largest squared strain: no square root or division per edge
+  // An edge can raise the maximum s only if fl(m / l) > s (m = moved2, l = length2); then
+  // m / l > s / (1 + u) (u = 2^-53, the unit roundoff), and with low = fl(s kBelow),
+  // fl(low l) <= s kBelow (1 + u)^2 l < m for any kBelow <= (1 + u)^-3, about 1 - 3u: every edge
+  // that can raise it passes the division-free test low * l < m (a few more than those do,
+  // hence the max). So the result is the largest rounded ratio fl(m / l) over the edges, in
+  // whatever order they come. The test without the margin (s * l < m, until 2026-11-24) could
+  // round against an edge whose ratio rounds just above s, so the maximum depended on which
+  // edges came first, i.e. on how the faces were shared out between threads (issue 13).
+  // (Assumes low * l is not subnormal: squared lengths and strains far above 1e-300.)
+  constexpr double kBelow = 1.0 - 4.0 * std::numeric_limits<double>::epsilon();
   // Every interior edge is seen from both faces: the bound is a maximum, so that is harmless
   // and cheaper than deduplicating.
-#pragma omp parallel for schedule(static) reduction(max : strain2) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    if (!mesh.is_alive(f)) continue;
-    const auto v = mesh.vertices(f);
-    for (int j = 0; j < 3; ++j) {
-      const Vertex a = v[static_cast<std::size_t>(j)], b = v[static_cast<std::size_t>((j + 1) % 3)];
-      const double length2 = (mesh.position(a) - mesh.position(b)).squaredNorm();
-      const double moved2 = (displacement[a.idx] - displacement[b.idx]).squaredNorm();
-      // strain2 * length2 < moved2 decides without a division (false for NaN, ignored as
-      // before); the division only on a new maximum, a few times per pass. Edges of no length
-      // are skipped; one branch per edge, not two (both tests are taken as one).
-      if ((length2 > 0) & (strain2 * length2 < moved2)) strain2 = moved2 / length2;
+#pragma omp parallel reduction(max : strain2) if (n > kParallelMin)
+  {
+    strain2 = 0.0;  // (each thread's; the maximum is at least 0 anyway)
+    double low = 0.0;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Face f(static_cast<std::uint32_t>(i));
+      if (!mesh.is_alive(f)) continue;
+      const auto v = mesh.vertices(f);
+      for (int j = 0; j < 3; ++j) {
+        const Vertex a = v[static_cast<std::size_t>(j)],
+                     b = v[static_cast<std::size_t>((j + 1) % 3)];
+        const double length2 = (mesh.position(a) - mesh.position(b)).squaredNorm();
+        const double moved2 = (displacement[a.idx] - displacement[b.idx]).squaredNorm();
+        // False for NaN (ignored, as before); the division only on a candidate maximum, a few
+        // times per pass. Edges of no length are skipped; one branch per edge, not two (both
+        // tests are taken as one).
+        if ((length2 > 0) & (low * length2 < moved2)) {
+          strain2 = std::max(strain2, moved2 / length2);
+          low = strain2 * kBelow;
+        }
+      }
     }
   }
   const double strain = std::sqrt(strain2);

@@ -325,17 +325,29 @@ std::size_t SampleStore::refresh_patterns(const Mesh48& mesh) {
 
 SampleStore::Summary SampleStore::summary(const Mesh48& mesh) const {
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  double max_error = 0.0, sum = 0.0;
+  // The samples' errors are summed in kBlocks fixed ranges of faces, the ranges' sums then in
+  // order: the same additions in the same order whatever the thread count. (A reduction(+)
+  // adds each thread's partial sum: the mean's last bits depended on the thread count, and so
+  // did every frame's stats; issue 13.) The maximum and the count are exact in any order.
+  constexpr std::int64_t kBlocks = 64;
+  const std::int64_t blocks = n > kParallelMin ? kBlocks : 1;
+  double max_error = 0.0, partial[kBlocks] = {};
   std::size_t samples = 0;
-#pragma omp parallel for schedule(static) reduction(max : max_error) reduction(+ : sum, samples) \
+#pragma omp parallel for schedule(static) reduction(max : max_error) reduction(+ : samples) \
     if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    if (!mesh.is_alive(f)) continue;
-    max_error = std::max(max_error, face_error_[f.idx]);
-    for_each_sample(f, [&](const Vec3&, double error) { sum += error; });
-    samples += face_count_[f.idx];
+  for (std::int64_t block = 0; block < blocks; ++block) {
+    double sum = 0.0;
+    for (std::int64_t i = n * block / blocks; i < n * (block + 1) / blocks; ++i) {
+      const Face f(static_cast<std::uint32_t>(i));
+      if (!mesh.is_alive(f)) continue;
+      max_error = std::max(max_error, face_error_[f.idx]);
+      for_each_sample(f, [&](const Vec3&, double error) { sum += error; });
+      samples += face_count_[f.idx];
+    }
+    partial[block] = sum;
   }
+  double sum = 0.0;
+  for (std::int64_t block = 0; block < blocks; ++block) sum += partial[block];
   Summary s;
   s.max_error = max_error;
   s.samples = samples;

@@ -29,33 +29,33 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return smallest;
 }
 
-// Whether the triangle's smallest angle is below the angle whose cosine is `cos_limit` > 0
-// (a degenerate triangle is), given its edges e1 = b - a, e2 = c - a (the face normal's) and
-// bc = c - b: this runs on every face of every frame, so without a square root, a division or
-// a data-dependent branch. The smallest angle is below the limit when some angle is: at a
-// corner between edges u, w, u.w > cos_limit |u| |w|, i.e. u.w > 0 and
-// (u.w)^2 > cos_limit^2 |u|^2 |w|^2. All three corners are tested and or-ed: picking the corner
-// opposite the shortest edge first (as this did until 2026-11-24) was a branch the processor
-// mispredicted on many faces, the screen's most sampled instruction on twist (perf,
-// BM_SafeguardChecks). Inlined into the screen's face pass, which has e1 and e2 already (as a
-// call of its own it was 20.9M of the screen's 73.9M instructions over twist's 100 steps).
+// Whether the triangle's smallest angle is below the limit, given its edges e1 = b - a,
+// e2 = c - a (the face normal's), bc = c - b, the face normal's squared norm normal2 =
+// |e1 x e2|^2 and sin2_limit = sin^2 of the limit (at most 90 degrees). A degenerate triangle
+// is below. This runs on every face of every frame, so without a square root, a division or a
+// data-dependent branch. By the sines: the angle at a corner between edges u, w has
+// sin^2 = normal2 / (|u|^2 |w|^2), smallest at the corner between the two longest edges (the
+// largest product). A sine below sin(limit) means an angle below the limit or above
+// 180 degrees minus it, and then the other two angles are below the limit; and the smallest
+// angle (at most 60 degrees) is below the limit only if its sine is. So: below exactly when
+// normal2 < sin2_limit * (the largest product), with the normal's norm the screen has anyway:
+// three products and a comparison instead of the cosine test at all three corners (three dot
+// products, six products, six comparisons), which this replaced on 2026-11-24; the verdicts
+// differ only by rounding, within 1e-9 degrees of the limit
+// (FoldScreen.SliversAreTheFacesBelowTheFloorMeasuredIndependently). Inlined into the screen's
+// face pass, which has e1, e2 and the normal already.
 [[gnu::always_inline]] inline bool below_angle_edges(const Vec3& e1, const Vec3& e2, const Vec3& bc,
-                                                     double cos_limit) {
+                                                     double normal2, double sin2_limit) {
   const double lab = e1.squaredNorm(), lbc = bc.squaredNorm(), lca = e2.squaredNorm();
-  const double at_a = e1.dot(e2), at_b = -e1.dot(bc), at_c = e2.dot(bc);
-  const double c2 = cos_limit * cos_limit;
-  const bool degenerate = !(lab * lbc * lca > 0);
-  return degenerate | ((at_a > 0) & (at_a * at_a > c2 * lab * lca)) |
-         ((at_b > 0) & (at_b * at_b > c2 * lab * lbc)) |
-         ((at_c > 0) & (at_c * at_c > c2 * lca * lbc));
+  const double widest = std::max(std::max(lab * lca, lab * lbc), lca * lbc);
+  return !(normal2 > 0) | (normal2 < sin2_limit * widest);
 }
 
-// The same verdict from the corners. Bit for bit what the three edges a -> b, b -> c, c -> a
-// give (as this was written until 2026-11-24): a - c is exactly -(c - a), and negating a
-// factor negates a product and a sum of products exactly, so |a - c|^2 = |e2|^2,
-// -(b - a).(a - c) = e1.e2 and -(a - c).bc = e2.bc.
-bool below_angle(const Vec3& a, const Vec3& b, const Vec3& c, double cos_limit) {
-  return below_angle_edges(b - a, c - a, c - b, cos_limit);
+// sin^2 of the angle floor, for below_angle_edges (a floor above 90 degrees as 90: every
+// triangle but one with a right angle between its two longest edges is below it anyway).
+double sin2_floor(double min_angle_deg) {
+  const double s = std::sin(std::min(min_angle_deg, 90.0) * M_PI / 180.0);
+  return s * s;
 }
 
 // Folded against the surface: the face's normal points away from the surface normal at one
@@ -183,7 +183,7 @@ bool suspect(const Vec3& fn, const FoldScreenBuffers& b, const std::array<Vertex
 }
 
 // 1 folded, 2 sliver, 0 neither: the screen's verdict on face f with corners `corners`, given
-// its normal and its corners' summed mesh normals in `b`. `sliver`: below_angle's verdict.
+// its normal and its corners' summed mesh normals in `b`. `sliver`: below_angle_edges' verdict.
 std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f,
                      const std::array<Vertex, 3>& corners, const Vec3& fn,
                      const FoldScreenBuffers& b, bool sliver) {
@@ -191,9 +191,10 @@ std::uint8_t verdict(const Mesh48& mesh, const Surface& surface, Face f,
   return sliver ? 2 : 0;
 }
 
-bool face_below_angle(const Mesh48& mesh, Face f, double cos_limit) {
+bool face_below_angle(const Mesh48& mesh, Face f, const Vec3& normal, double sin2_limit) {
   const auto v = mesh.vertices(f);
-  return below_angle(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), cos_limit);
+  const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+  return below_angle_edges(b - a, c - a, c - b, normal.squaredNorm(), sin2_limit);
 }
 
 }  // namespace
@@ -216,10 +217,12 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   // 5.71 to 5.12 ms per 100 steps (medians of 32 interleaved runs, 2-core VM at load 4,
   // 2026-11-24); with the angle test inlined on the normal's edges and each corner's |N|^2 once
   // per vertex (a pass over the vertices), the screen's instructions over those 100 steps went
-  // from 73.9M to 61.2M (callgrind, 2026-11-24).
+  // from 73.9M to 61.2M (callgrind, 2026-11-24), and with the angle tested by the sines on the
+  // normal's own squared norm (below_angle_edges) to 52.1M (every published mesh of those 100
+  // steps, and of twist in 30 and 10 steps, bit-identical).
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   const auto nv = static_cast<std::int64_t>(mesh.vertex_capacity());
-  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
+  const double sin2_limit = sin2_floor(min_angle_deg);
   b.normal.resize(static_cast<std::size_t>(n));
   b.kind.resize(static_cast<std::size_t>(n));
   b.vertex_normal.assign(static_cast<std::size_t>(nv), Vec3::Zero());
@@ -238,7 +241,7 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     const Vec3 e1 = p1 - p0, e2 = p2 - p0;
     const Vec3 normal = e1.cross(e2);
     b.normal[k] = normal;
-    b.kind[k] = below_angle_edges(e1, e2, p2 - p1, cos_limit) ? 2 : 0;
+    b.kind[k] = below_angle_edges(e1, e2, p2 - p1, normal.squaredNorm(), sin2_limit) ? 2 : 0;
     if constexpr (decltype(sum)::value)
       for (Vertex c : v) b.vertex_normal[c.idx] += normal;
   };
@@ -319,7 +322,7 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
     b.vertex_normal[v.idx] = sum;
     b.vertex_normal2[v.idx] = sum.squaredNorm();
   };
-  const double cos_limit = std::cos(min_angle_deg * M_PI / 180.0);
+  const double sin2_limit = sin2_floor(min_angle_deg);
   // Every live face with a corner in `vertices`, once.
   for (Vertex v : vertices) {
     if (!mesh.is_alive(v)) continue;
@@ -329,8 +332,9 @@ void find_bad_faces_around(const Mesh48& mesh, const Surface& surface, double mi
       b.face_mark[f.idx] = call;
       const auto w = mesh.vertices(f);
       for (Vertex u : w) mesh_normal(u);
-      const std::uint8_t k = verdict(mesh, surface, f, w, face_normal(mesh, f), b,
-                                     face_below_angle(mesh, f, cos_limit));
+      const Vec3 normal = face_normal(mesh, f);
+      const std::uint8_t k =
+          verdict(mesh, surface, f, w, normal, b, face_below_angle(mesh, f, normal, sin2_limit));
       if (k == 1) folded.push_back(f);
       if (k == 2) slivers.push_back(f);
     });
