@@ -378,7 +378,8 @@ void run_steps(const RunOptions& o, Adapter& adapter, const SnapshotFields& fiel
       if (frames) frames->render(snap, s.step);
     }
   };
-  log_fixed_critical_points(log, adapter.surface(), o.adapt.threshold);
+  // With --topology-events off no point is watched (Adapter::watch_topology): nothing to say.
+  if (o.adapt.topology_events) log_fixed_critical_points(log, adapter.surface(), o.adapt.threshold);
   record(adapter.initialize());
   summary.keyframe_triangles.push_back(adapter.stats().triangles);
   const std::vector<double> times = step_times(o);

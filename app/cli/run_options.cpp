@@ -130,6 +130,12 @@ const std::map<std::string, Setter>& valued_options() {
            throw UsageError("--renumber must be on or off, got '" + v + "'");
          o.adapt.renumber = v == "on";
        }},
+      {"--topology-events",
+       [](RunOptions& o, auto&, auto& v) {
+         if (v != "on" && v != "off")
+           throw UsageError("--topology-events must be on or off, got '" + v + "'");
+         o.adapt.topology_events = v == "on";
+       }},
       {"--k", [](RunOptions& o, auto& k, auto& v) { o.adapt.smoothing.k = parse_number(k, v); }},
       {"--smooth-iters",
        [](RunOptions& o, auto& k, auto& v) {
@@ -355,6 +361,11 @@ Adaptation:
   --renumber on|off      renumber the mesh along a Morton curve when its numbering has
                          scattered (memory locality: faster steps on large meshes; results
                          equal up to rounding; the stats column `renumbered`)  [on]
+  --topology-events on|off
+                         watch F for merges, splits, holes and pinches (surfaces whose
+                         topology may change: expr, blobs, mri), report each and repair the
+                         mesh; off: no events, and where the mesh's topology is no longer F's
+                         its splits are held once the error stops falling  [on]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
   --smooth-weights W     the one-ring centroid of Equation 1: uniform (the paper's) or

@@ -229,13 +229,18 @@ TEST(MriEvents, DumbbellSplitUnwatchedEndsBounded) {
 // open). The run says how many critical points it watches and reports the split on stderr and
 // in the JSON, within one step of the closed form (5 mm less the blur's 2.0 mm, within 0.5 mm
 // as in DumbbellSplitsWhereTheFloodFillSplits).
-TEST(MriEvents, CliReportsTheDumbbellsSplit) {
+std::filesystem::path write_dumbbell_nifti() {
   const ScalarVolume v = dumbbell_volume();
   std::vector<std::int16_t> values(v.values.begin(), v.values.end());
   const auto path = test::scratch_dir("mri_dumbbell") / "dumbbell.nii.gz";
   nifti_1_header h = test::make_header({72, 36, 36}, DT_INT16, 16);
   test::set_sform(h, v.grid.linear, v.grid.offset);
   test::write_nifti(path, h, values);
+  return path;
+}
+
+TEST(MriEvents, CliReportsTheDumbbellsSplit) {
+  const auto path = write_dumbbell_nifti();
   const int steps = 8;
   const test::CliRun run = test::run_cli(
       {"--scene", "mri", "--volume", path.string(), "--param", "closing=2", "--param",
@@ -253,6 +258,38 @@ TEST(MriEvents, CliReportsTheDumbbellsSplit) {
   const double sigma = std::sqrt(1.5 * 1.5 + 1.0 / 3.0);
   EXPECT_NEAR(kDepthMax * e["time"].get<double>(), kNeckRadius - sigma * std::sqrt(M_PI / 2),
               0.5 + kDepthMax / steps);
+}
+
+// --topology-events off: the same run past the dumbbell's split watches no critical point,
+// reports no event and repairs nothing (the split is followed with it on, locally or by a
+// re-base); a value other than on or off is one line and status 2. Off, the mesh keeps the neck
+// F no longer has, and the budget bounds the run (at 4,994 triangles, max error 7.6 mm,
+// 2026-11-24).
+TEST(MriEvents, CliTopologyEventsOffWatchesNothing) {
+  const auto path = write_dumbbell_nifti();
+  const auto run = [&](const std::string& events) {
+    return test::run_cli({"--scene", "mri", "--volume", path.string(), "--param", "closing=2",
+                          "--param", "depth_max=" + std::to_string(kDepthMax), "--t1", "0.5",
+                          "--steps", "2", "--max-triangles", "5000", "--topology-events", events,
+                          "--quiet"});
+  };
+  const test::CliRun on = run("on"), off = run("off");
+  ASSERT_EQ(on.status, 0) << on.err;
+  ASSERT_EQ(off.status, 0) << off.err;
+  ASSERT_TRUE(on.json.is_object()) << on.out;
+  ASSERT_TRUE(off.json.is_object()) << off.out;
+  EXPECT_NE(on.err.find("critical point(s) of F can change"), std::string::npos) << on.err;
+  EXPECT_NE(on.err.find("topology: split at t="), std::string::npos) << on.err;
+  EXPECT_EQ(on.json["topology_events"].size(), 1u) << on.err;
+  EXPECT_GE(on.json["local_repairs"].get<int>() + on.json["rebuilds"].get<int>(), 1) << on.err;
+  EXPECT_EQ(off.err.find("critical point"), std::string::npos) << off.err;
+  EXPECT_EQ(off.err.find(" at t="), std::string::npos) << off.err;
+  EXPECT_TRUE(off.json["topology_events"].empty()) << off.err;
+  EXPECT_EQ(off.json["local_repairs"], 0) << off.err;
+  EXPECT_EQ(off.json["rebuilds"], 0) << off.err;
+  const test::CliRun bad = run("maybe");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "dynamesh-cli: --topology-events must be on or off, got 'maybe'\n");
 }
 
 // Colin27's layers from 0 to 20 mm deep, its mask closed by a ball of `closing` mm.
