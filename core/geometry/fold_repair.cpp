@@ -85,7 +85,9 @@ class StarNormals {
         }
     });
   }
-  // The star's worst face score (face_score) with the centre where it is now.
+  // The star's worst face with the centre where it is now. A face scores its smallest angle in
+  // degrees when it is not folded, -1 when it is (so that unfolding always counts as an
+  // improvement).
   double score() const {
     const Vec3 centre_normal = surface_normal_at(surface_, mesh_, centre_);
     double worst = 180.0;

@@ -262,9 +262,9 @@ TEST(MriEvents, CliReportsTheDumbbellsSplit) {
 
 // --topology-events off: the same run past the dumbbell's split watches no critical point,
 // reports no event and repairs nothing (the split is followed with it on, locally or by a
-// re-base); a value other than on or off is one line and status 2. Off, the mesh keeps the neck
-// F no longer has, and the budget bounds the run (at 4,994 triangles, max error 7.6 mm,
-// 2026-11-24).
+// re-base); a value other than on or off is one line and status 2; --help names it. Off, the mesh
+// keeps the neck F no longer has, and the budget bounds the run (at 4,994 triangles, max error 7.6
+// mm, 2026-11-24).
 TEST(MriEvents, CliTopologyEventsOffWatchesNothing) {
   const auto path = write_dumbbell_nifti();
   const auto run = [&](const std::string& events) {
@@ -290,6 +290,9 @@ TEST(MriEvents, CliTopologyEventsOffWatchesNothing) {
   const test::CliRun bad = run("maybe");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.err, "dynamesh-cli: --topology-events must be on or off, got 'maybe'\n");
+  const test::CliRun help = test::run_cli({"--help"});
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--topology-events on|off"), std::string::npos) << help.out;
 }
 
 // Colin27's layers from 0 to 20 mm deep, its mask closed by a ball of `closing` mm.
