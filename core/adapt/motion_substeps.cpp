@@ -69,10 +69,12 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
   e.strain = strain;
   if (!options.enabled) return e;
   const double need = strain / options.max_strain;
-  if (std::isfinite(need) && need > 1.0)
-    e.substeps = std::min(options.max_substeps, static_cast<int>(std::ceil(need)));
-  else if (!std::isfinite(need))
-    e.substeps = options.max_substeps;
+  // The minimum in double: a need beyond INT_MAX (a vertex Newton sent across a gap) does not
+  // convert to int, and came out as INT_MIN sub-steps, i.e. none.
+  if (!(need <= 1.0))  // NaN and infinity included
+    e.substeps = static_cast<int>(std::isfinite(need)
+                                      ? std::min<double>(options.max_substeps, std::ceil(need))
+                                      : options.max_substeps);
   return e;
 }
 
