@@ -115,8 +115,7 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
   const int chunks = nf > kParallelMin ? kRingChunks : 1;
   w.ring_sums.resize(static_cast<std::size_t>(chunks));
   // `multi`: more than one range, so the combination needs to know which sums each touched.
-  auto face_pass = [&](std::vector<RingSum>& sums, std::int64_t begin, std::int64_t end,
-                       auto multi) {
+  auto face_pass = [&](RingSum* const sums, std::int64_t begin, std::int64_t end, auto multi) {
     for (std::int64_t f = begin; f < end; ++f) {
       if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
       for (int e = 0; e < 3; ++e) {
@@ -154,9 +153,9 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
     sums.assign(nv, RingSum{});
     const std::int64_t begin = nf * c / chunks, end = nf * (c + 1) / chunks;
     if (chunks > 1)
-      face_pass(sums, begin, end, std::true_type{});
+      face_pass(sums.data(), begin, end, std::true_type{});
     else
-      face_pass(sums, begin, end, std::false_type{});
+      face_pass(sums.data(), begin, end, std::false_type{});
   }
   w.centroid.resize(nv);
   w.boundary.resize(nv);
