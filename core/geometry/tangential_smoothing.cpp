@@ -89,65 +89,6 @@ namespace {
 
 using Work = SmoothingWorkspace::Buffers;
 
-// Vertex v's ring sum as the serial pass over the faces makes it, bit for bit: its edges in
-// ascending halfedge order (each from its lower halfedge, or its only one), its faces' normals
-// in ascending face order. For the vertices whose faces several threads summed: floating-point
-// addition is not associative, so adding the threads' partial sums gave other last bits than
-// one thread did, and the run's frames depended on the thread count (predictive mri 0 -> 20 ->
-// 0 mm: other meshes from step 24 on with 2 threads than with 1; issue 13).
-RingSum serial_ring_sum(const Mesh48& mesh, Vertex v, bool scale_invariant, bool normals) {
-  // A vertex has a handful of faces: sorted by insertion as its ring is walked, without
-  // allocating (a larger ring is summed through a vector; none in a 4-8 mesh).
-  // (At most one edge more than faces: halfedges get room for two per face.)
-  constexpr std::size_t kMax = 32;
-  std::uint32_t small[3 * kMax];
-  std::vector<std::uint32_t> large;
-  std::size_t edges = 0, faces = 0;
-  std::uint32_t* face_ids = small;
-  std::uint32_t* halfedges = small + kMax;
-  auto insert = [](std::uint32_t* a, std::size_t& n, std::uint32_t x) {
-    a[n] = x;
-    for (std::size_t k = n++; k > 0 && a[k] < a[k - 1]; --k) std::swap(a[k], a[k - 1]);
-  };
-  std::size_t count = 0;
-  mesh.for_each_corner_around(v, [&](Corner) { ++count; });
-  if (count > kMax) {
-    large.resize(3 * count);
-    face_ids = large.data();
-    halfedges = large.data() + count;
-  }
-  mesh.for_each_corner_around(v, [&](Corner c) {
-    insert(face_ids, faces, c.face.idx);
-    // The two halfedges of c.face at v: into v (local + 1) and out of v (local + 2).
-    for (int e : {(c.local + 1) % 3, (c.local + 2) % 3}) {
-      const Halfedge h(c.face, e);
-      const Halfedge twin = mesh.twin(h);
-      if (!twin.is_valid() || h.idx < twin.idx) insert(halfedges, edges, h.idx);
-    }
-  });
-  RingSum s;
-  for (std::size_t i = 0; i < edges; ++i) {
-    const Halfedge h(halfedges[i]);
-    if (!mesh.twin(h).is_valid()) s.boundary = 1;
-    // As compute_ring_centroids: the same operations on the same numbers.
-    const Vec3 &pa = mesh.position(mesh.from_vertex(h)), &pb = mesh.position(mesh.to_vertex(h));
-    const double length = (pa - pb).norm();
-    const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
-    s.sum += weight * (mesh.from_vertex(h) == v ? pb : pa);
-    s.weight += weight;
-    s.length += length;
-    ++s.edges;
-  }
-  if (normals)
-    for (std::size_t i = 0; i < faces; ++i) {
-      const auto w = mesh.vertices(Face(face_ids[i]));
-      const Vec3 &p0 = mesh.position(w[0]), &p1 = mesh.position(w[1]), &p2 = mesh.position(w[2]);
-      s.normal += (p1 - p0).cross(p2 - p0);
-    }
-  s.touched = 1;
-  return s;
-}
-
 // Centroids of every vertex's one-ring, and which vertices lie on the boundary, in one pass
 // over the faces that meets each edge once (from its lower-numbered halfedge): walking each
 // vertex's ring instead chases faces scattered through memory. Uniform weights are the
@@ -155,60 +96,66 @@ RingSum serial_ring_sum(const Mesh48& mesh, Vertex v, bool scale_invariant, bool
 // ring a fixed point — with uniform weights a vertex at a level transition of the 4-8 mesh
 // is pulled towards the coarse side, fine regions lose resolution and are split again, and
 // the mesh grows cycle after cycle of a periodic deformation.
-// In parallel: each thread sums its share of the faces into its own accumulators (an edge
-// adds to both its ends, which other threads' edges share). A vertex that only one thread's
-// faces touch has that thread's sum, the serial pass's exactly; the few on the seams between
-// the threads' shares (a front of vertices: faces are numbered along a space-filling curve)
-// are summed again from their rings in the serial pass's order (serial_ring_sum). So the
-// centroids, and everything after them, do not depend on the thread count.
+// In parallel: the faces are cut into kRingChunks fixed ranges, each summed into its own
+// accumulators (an edge adds to both its ends, which other ranges' edges share), and each
+// vertex's sums are the ranges' sums added in range order. The ranges do not depend on the
+// thread count, so neither do the sums: floating-point addition is not associative, and with
+// one accumulator array per *thread* (until 2026-11-24) a vertex whose faces two threads summed
+// got other last bits with two threads than with one, and so did every frame after (issue 13;
+// test ThreadCount.*). Re-summing only those vertices in the serial order was tried: before a
+// renumbering, a split's children are numbered far apart, most vertices have faces in both
+// halves, and the pass took 3.7x main's instructions with two threads (capsule-bend, 31k faces).
+// Two ranges cost one thread an extra accumulator array (72 bytes a vertex) and give this loop
+// two threads at most.
+constexpr int kRingChunks = 2;
+
 void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
   const std::size_t nv = mesh.vertex_capacity();
   const auto nf = static_cast<std::int64_t>(mesh.face_capacity());
-  const int threads = nf > kParallelMin ? omp_get_max_threads() : 1;
-  w.ring_sums.resize(static_cast<std::size_t>(threads));
-  int team = 1;  // the threads the region really had (their sums are this call's)
-#pragma omp parallel num_threads(threads)
-  {
-    if (omp_get_thread_num() == 0) team = omp_get_num_threads();
-    std::vector<RingSum>& sums = w.ring_sums[static_cast<std::size_t>(omp_get_thread_num())];
-    sums.assign(nv, RingSum{});
-    // `multi`: more than one thread, so the seams need to know which sums each one touched.
-    auto face_pass = [&](auto multi) {
-#pragma omp for schedule(static)
-      for (std::int64_t f = 0; f < nf; ++f) {
-        if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
-        for (int e = 0; e < 3; ++e) {
-          const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
-          const Halfedge twin = mesh.twin(h);
-          if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
-          const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-          if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
-          const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
-          const double length = (pa - pb).norm();
-          const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
-          sums[a.idx].sum += weight * pb;
-          sums[a.idx].weight += weight;
-          sums[b.idx].sum += weight * pa;
-          sums[b.idx].weight += weight;
-          sums[a.idx].length += length;
-          sums[b.idx].length += length;
-          ++sums[a.idx].edges;
-          ++sums[b.idx].edges;
-        }
-        if (!w.reuse) continue;
-        const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
-        const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
-        const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
-        for (Vertex x : v) {
-          sums[x.idx].normal += area_normal;
-          if constexpr (decltype(multi)::value) sums[x.idx].touched = 1;
-        }
+  const int chunks = nf > kParallelMin ? kRingChunks : 1;
+  w.ring_sums.resize(static_cast<std::size_t>(chunks));
+  // `multi`: more than one range, so the combination needs to know which sums each touched.
+  auto face_pass = [&](RingSum* const sums, std::int64_t begin, std::int64_t end, auto multi) {
+    for (std::int64_t f = begin; f < end; ++f) {
+      if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
+      for (int e = 0; e < 3; ++e) {
+        const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
+        const Halfedge twin = mesh.twin(h);
+        if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
+        const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+        if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
+        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+        const double length = (pa - pb).norm();
+        const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
+        sums[a.idx].sum += weight * pb;
+        sums[a.idx].weight += weight;
+        sums[b.idx].sum += weight * pa;
+        sums[b.idx].weight += weight;
+        sums[a.idx].length += length;
+        sums[b.idx].length += length;
+        ++sums[a.idx].edges;
+        ++sums[b.idx].edges;
       }
-    };
-    if (threads > 1)
-      face_pass(std::true_type{});
+      if (!w.reuse) continue;
+      const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
+      const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
+      const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
+      for (Vertex x : v) {
+        sums[x.idx].normal += area_normal;
+        if constexpr (decltype(multi)::value) sums[x.idx].touched = 1;
+      }
+    }
+  };
+#pragma omp parallel for schedule(static) if (chunks > 1) \
+    num_threads(std::min(chunks, omp_get_max_threads()))
+  for (int c = 0; c < chunks; ++c) {
+    std::vector<RingSum>& sums = w.ring_sums[static_cast<std::size_t>(c)];
+    sums.assign(nv, RingSum{});
+    const std::int64_t begin = nf * c / chunks, end = nf * (c + 1) / chunks;
+    if (chunks > 1)
+      face_pass(sums.data(), begin, end, std::true_type{});
     else
-      face_pass(std::false_type{});
+      face_pass(sums.data(), begin, end, std::false_type{});
   }
   w.centroid.resize(nv);
   w.boundary.resize(nv);
@@ -220,15 +167,22 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
     const auto k = static_cast<std::size_t>(i);
     const Vertex v(static_cast<std::uint32_t>(i));
     const RingSum* total = &w.ring_sums[0][k];
-    std::optional<RingSum> resummed;  // (not constructed unless needed)
-    if (team > 1) {
-      int touching = 0;
-      for (std::size_t t = 0; t < static_cast<std::size_t>(team); ++t)
-        if (w.ring_sums[t][k].edges || w.ring_sums[t][k].touched)
-          total = &w.ring_sums[t][k], ++touching;
-      if (touching > 1) {
-        total = &resummed.emplace(serial_ring_sum(mesh, v, scale_invariant, w.reuse));
+    std::optional<RingSum> added;  // (not constructed unless two ranges touched the vertex)
+    // The ranges that touched it, in order; the first as it is (x + 0 is not always x: -0).
+    for (std::size_t c = 1; c < static_cast<std::size_t>(chunks); ++c) {
+      const RingSum& r = w.ring_sums[c][k];
+      if (!(r.edges || r.touched)) continue;
+      if (!(total->edges || total->touched)) {
+        total = &r;
+        continue;
       }
+      if (!added) total = &added.emplace(*total);
+      added->sum += r.sum;
+      added->normal += r.normal;
+      added->weight += r.weight;
+      added->length += r.length;
+      added->edges = static_cast<std::uint16_t>(added->edges + r.edges);
+      added->boundary |= r.boundary;
     }
     w.centroid[k] = total->weight > 0 ? Vec3(total->sum / total->weight) : mesh.position(v);
     w.boundary[k] = total->boundary;
