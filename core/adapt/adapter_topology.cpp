@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -248,6 +249,38 @@ Mesh48 Adapter::mid_run_base_mesh(long euler, long components) {
       "), so the mesh cannot be rebuilt there");
 }
 
+namespace {
+
+// Where to re-mesh the folds: the mean of all their corners when every corner lies within
+// `reach` of it (one patch for them all); else the mean of the corners of the folds near the
+// first one (within `reach` of its corners' mean) when those lie within `reach` of it; else
+// nothing (folds spread too widely for patches).
+std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Face>& folded,
+                                        double reach) {
+  const auto corner_mean = [&](Face f) {
+    Vec3 c = Vec3::Zero();
+    for (const Vertex v : mesh.vertices(f)) c += mesh.position(v);
+    return Vec3(c / 3.0);
+  };
+  const auto centre_of = [&](auto&& member) -> std::optional<Vec3> {
+    Vec3 centre = Vec3::Zero();
+    std::size_t faces = 0;
+    for (const Face f : folded)
+      if (member(f)) centre += corner_mean(f), ++faces;
+    centre /= static_cast<double>(faces);
+    for (const Face f : folded)
+      if (member(f))
+        for (const Vertex v : mesh.vertices(f))
+          if ((mesh.position(v) - centre).norm() > reach) return std::nullopt;
+    return centre;
+  };
+  if (const auto all = centre_of([](Face) { return true; })) return all;
+  const Vec3 seed = corner_mean(folded.front());
+  return centre_of([&](Face f) { return (corner_mean(f) - seed).norm() <= reach; });
+}
+
+}  // namespace
+
 bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   // Faces left folded next to an event: a neck thinning towards a split narrower than its
   // edges, or tips receding from one just repaired (the wide blobs in 20 steps: 1 to 4 faces
@@ -255,42 +288,51 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   // cut, contour and stitch (local_repair.h) serve as well where the topology stays: the
   // faces around the folds are replaced by F's contour there, whose new triangles all face
   // up grad F, and the other vertices keep their identity; a global re-base otherwise.
+  // A split leaves two tips, and each may fold (the torus pinched in 10 steps: one face at
+  // each tip the step after, 2 apart): one patch per cluster of folds, each within half the
+  // cut, until none is left.
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
-  std::vector<Face> folded, slivers;
-  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
-  if (folded.empty()) return false;
-  Vec3 centre = Vec3::Zero();
-  std::size_t corners = 0;
-  for (const Face f : folded)
-    for (const Vertex v : mesh_.vertices(f)) centre += mesh_.position(v), ++corners;
-  centre /= static_cast<double>(corners);
   const LocalRepairOptions o = local_repair_options(topology_->spacing(), probe_);
-  for (const Face f : folded)  // one patch: the folds together, within half the cut
-    for (const Vertex v : mesh_.vertices(f))
-      if ((mesh_.position(v) - centre).norm() > 0.5 * o.radius) return false;
-  const LocalRepairResult r = repair_locally(mesh_, implicit, centre, o);
-  if (!r.repaired) {
-    stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
-    return false;
+  constexpr int kMostPatches = 4;
+  std::vector<Face> folded, slivers;
+  std::vector<Vertex> born;
+  std::vector<Vec3> centres;
+  std::size_t removed = 0;
+  double spacing = 0.0;
+  for (int patch = 0;; ++patch) {
+    find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
+    if (folded.empty()) break;
+    if (patch == kMostPatches) return false;
+    const std::optional<Vec3> centre = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
+    if (!centre) return false;
+    const LocalRepairResult r = repair_locally(mesh_, implicit, *centre, o);
+    if (!r.repaired) {
+      stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
+      return false;
+    }
+    adopt_repair(r.new_vertices);
+    born.insert(born.end(), r.new_vertices.begin(), r.new_vertices.end());
+    centres.push_back(*centre);
+    removed += r.removed_faces;
+    spacing = std::max(spacing, r.spacing);
   }
-  adopt_repair(r.new_vertices);
+  if (centres.empty()) return false;
   if (!(summarize_topology(mesh_) == topology)) return false;  // the re-base follows
-  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
-  if (!folded.empty()) return false;
   // Nor may the new faces pass through the mesh's other sheet across the neck (the wide blobs
   // in 20 steps: 111 crossing pairs in the frame before the split, every face facing up).
   std::vector<Face> around;
-  for (const Vertex v : r.new_vertices)
-    mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
+  for (const Vertex v : born)  // a later patch may have cut out an earlier one's vertices
+    if (mesh_.is_alive(v))
+      mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
   if (count_face_crossings(mesh_, around) > 0) {
     stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
     return false;
   }
-  repair_centres_.push_back(centre);
+  repair_centres_.insert(repair_centres_.end(), centres.begin(), centres.end());
   stats_.folds_remeshed += stats_.folds_left;
-  stats_.repair_faces_replaced += r.removed_faces;
-  stats_.repair_spacing = std::max(stats_.repair_spacing, r.spacing);
+  stats_.repair_faces_replaced += removed;
+  stats_.repair_spacing = std::max(stats_.repair_spacing, spacing);
   return true;
 }
 

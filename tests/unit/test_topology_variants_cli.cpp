@@ -292,6 +292,15 @@ TEST(TopologyVariantsCli, TorusPinchedTwiceInTurnFallsInTwo) {
   run_and_judge(torus_pinched_twice("torus-twice-in-turn", 0.0, 0.3, 2.0, 0.18, 20));
 }
 
+// The torus pinch in 10 steps: the step after the pinch (t = 0.6, 23 sub-steps) left
+// one face folded at each retracting tip, two patches' width apart, and the mesh was rebuilt
+// from F's contour (survival 0.895): one patch per cluster of folds now.
+TEST(TopologyVariantsCli, TorusPinchIn10StepsKeepsItsVertices) {
+  Variant v = torus_pinch("torus-10", 0.0, 0.18, 10);
+  v.max_rebuilds = 0;
+  run_and_judge(v);
+}
+
 // One event of `kind` at `time`, with `before` and `after` it as (components, Euler
 // characteristic), on an F of one's own, 20 steps.
 template <long C0, long E0, long C1, long E1>
