@@ -604,11 +604,11 @@ Adapter::ErrorRange Adapter::star_error_range(const DiamondChange& plan) const {
 }
 
 void Adapter::measure_star(const DiamondChange& plan) {
-  std::vector<Face> skipped;
+  star_skipped_.clear();  // no allocation per star (the weld pass measures stars one at a time)
   for (int h = 0; h < plan.count; ++h)
     for (Face f : plan.halves[h].children)
-      if (predictor_.bound(samples_, f) > 0.0) skipped.push_back(f);
-  measure(skipped);
+      if (predictor_.bound(samples_, f) > 0.0) star_skipped_.push_back(f);
+  measure(star_skipped_);
 }
 
 bool Adapter::weld_allowed(const DiamondChange& plan, double error, double current) const {

@@ -184,6 +184,7 @@ class Adapter {
   // fresh block is fresh pages: allocator_policy.h).
   std::vector<double> weld_keys_;
   std::vector<std::uint8_t> weld_ambiguous_;
+  std::vector<Face> star_skipped_;  // measure_star()'s list, reused star to star
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;
