@@ -81,11 +81,19 @@ class Adapter::Tracker final : public MeshListener {
 
   void after_split(Mesh48& mesh, const DiamondChange& change) override {
     grow(mesh);
-    if (!probe_.put_split_vertex(mesh, change)) ++projection_failures;
+    const bool placed = probe_.put_split_vertex(mesh, change);
+    if (!placed) ++projection_failures;
     birth_step[change.vertex.idx] = current_step;
+    // A vertex the fold guard kept off F (SurfaceProbe::project_split_vertex) lowers no error:
+    // its faces are held until it is placed (Adapter::place_guarded_vertices).
+    const bool guarded = !placed && probe_.split_fold_guard();
+    if (guarded) adapter_.guarded_vertices_.push_back(change.vertex);
     for (int h = 0; h < change.count; ++h) {
       const Bisection& b = change.halves[h];
       lineage[b.children[1].idx] = lineage[b.children[0].idx];  // children[0] is the parent
+      std::vector<std::uint8_t>& held = adapter_.guard_held_;
+      if (held.size() < mesh.face_capacity()) held.resize(mesh.face_capacity(), 0);
+      held[b.children[1].idx] = held[b.children[0].idx] |= guarded;
     }
     for (int h = 0; h < change.count; ++h)
       for (Face f : change.halves[h].children) {
@@ -257,6 +265,7 @@ const StepStats& Adapter::step(double t) {
   stats_.time = t;
   start_positions_ = mesh_.positions();  // copy-assignment reuses the capacity
   probe_.set_split_fold_guard(false);    // until a topology repair (check_topology)
+  forget_guarded_vertices();
   repair_centres_.clear();
   vertices_at_start_ = mesh_.n_vertices();
   // Sub-steps (motion_substeps.h): the requested time is reached through equal sub-steps, each
@@ -299,6 +308,7 @@ const StepStats& Adapter::step(double t) {
       k = 0;
     }
   }
+  if (topology_) place_guarded_vertices();
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
   if (topology_) rebuild_if_crossed();
@@ -424,6 +434,7 @@ void Adapter::rebuild_from_base(long euler, long components) {
   // repairs of this step included.
   Mesh48 base = mid_run_base_mesh(euler, components);
   held_depth_ = -1;  // the new mesh has F's topology
+  forget_guarded_vertices();
   stats_.local_repairs = 0;
   stats_.repair_faces_replaced = 0;
   stats_.repair_spacing = 0.0;
@@ -450,6 +461,7 @@ void Adapter::adopt_repair(const std::vector<Vertex>& born) {
   // The faces held for an error that did not fall (split_pass) may have gone with the old
   // topology: every face may be split again.
   tracker_->forget_lineages(mesh_);
+  guard_held_.assign(guard_held_.size(), 0);  // face slots the surgery freed may be reused
   for (const Vertex v : born) tracker_->birth_step[v.idx] = step_;
   for (const Face f : mesh_.live_faces()) tracker_->touch(f);
   samples_.reset(mesh_);
@@ -628,6 +640,7 @@ bool Adapter::pathological(Face f) const {
 // face and of its neighbour across it (the diamond).
 bool Adapter::split_refused(Face f) const {
   if (held_depth_ >= 0 && mesh_.depth(f) >= held_depth_) return true;  // hold_splits
+  if (f.idx < guard_held_.size() && guard_held_[f.idx]) return true;   // a guarded vertex
   if (!options_.angle_guard.refuse_splits) return false;
   if (pathological(f)) return true;
   const Face other = mesh_.neighbor(f, 0);

@@ -149,6 +149,11 @@ class Adapter {
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
   // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
   void rebuild_if_folded();
+  // Before a frame is published: the split vertices the fold guard kept off F this step are
+  // projected onto it (the guard off), and the faces around them measured and refined; the
+  // fold repair before publishing follows.
+  void place_guarded_vertices();
+  void forget_guarded_vertices();
   // The faces left folded re-meshed by F's contour around them, when they lie together; true
   // when the mesh then has `topology` and no folded face (else the caller re-bases; the mesh
   // may have been changed).
@@ -208,6 +213,10 @@ class Adapter {
   std::size_t vertices_at_start_ = 0;
   std::vector<Vec3> displacement_;                  // predicted motion per vertex (plan_substeps)
   std::vector<ProjectionStart> projection_starts_;  // and where its Newton step started
+  // Split vertices the fold guard kept off F this step, and per face slot whether a face is
+  // held for one (Tracker::after_split, place_guarded_vertices).
+  std::vector<Vertex> guarded_vertices_;
+  std::vector<std::uint8_t> guard_held_;
   std::vector<Vec3> repair_centres_;  // of this step's local repairs (rebuild_if_crossed)
   int held_depth_ = -1;               // no split beyond it (hold_splits); -1: none
   std::uint32_t split_pass_id_ = 0;   // numbers the split passes (split_pass's lineages)

@@ -254,7 +254,10 @@ namespace {
 // Where to re-mesh the folds: the mean of all their corners when every corner lies within
 // `reach` of it (one patch for them all); else the mean of the corners of the folds near the
 // first one (within `reach` of its corners' mean) when those lie within `reach` of it; else
-// nothing (folds spread too widely for patches).
+// the first fold's own corner mean when its corners lie within twice `reach` (the cut's
+// radius: a large face alone, such as a strip triangle where an earlier patch met the seam;
+// the three blobs in a row, 40 steps: one at 0.37 from the neck, 0.22 across, and the mesh was
+// rebuilt); else nothing (folds spread too widely for patches).
 std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Face>& folded,
                                         double reach) {
   const auto corner_mean = [&](Face f) {
@@ -276,7 +279,23 @@ std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Fa
   };
   if (const auto all = centre_of([](Face) { return true; })) return all;
   const Vec3 seed = corner_mean(folded.front());
-  return centre_of([&](Face f) { return (corner_mean(f) - seed).norm() <= reach; });
+  if (const auto near = centre_of([&](Face f) { return (corner_mean(f) - seed).norm() <= reach; }))
+    return near;
+  reach *= 2.0;
+  return centre_of([&](Face f) { return f == folded.front(); });
+}
+
+// The saddle of F (Morse index 1 or 2: a neck's or a hole's centre) nearest to `centre` within
+// `reach`, if any.
+std::optional<Vec3> nearest_saddle(const std::vector<CriticalPoint>& points, const Vec3& centre,
+                                   double reach) {
+  std::optional<Vec3> best;
+  double best_distance = reach;
+  for (const CriticalPoint& c : points) {
+    const double d = (c.position - centre).norm();
+    if ((c.index == 1 || c.index == 2) && d <= best_distance) best = c.position, best_distance = d;
+  }
+  return best;
 }
 
 }  // namespace
@@ -291,6 +310,14 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   // A split leaves two tips, and each may fold (the torus pinched in 10 steps: one face at
   // each tip the step after, 2 apart): one patch per cluster of folds, each within half the
   // cut, until none is left.
+  // A patch is centred on a saddle of F near the folds when there is one: the contour's grid
+  // then has a point on it, and a neck thinner than the grid is kept (centred on the folds,
+  // the contour at 0.1 missed the three blobs' necks of radius 0.03 just before their split,
+  // the topology changed and the mesh was rebuilt, with 26-76 crossing pairs in the frame).
+  // A patch whose faces fold again next to an earlier one (the contour's triangles across a
+  // neck thinner than its spacing) is made again there at half the spacing and half the cut:
+  // as many triangles, the neck resolved (the three blobs 0.0016 after their merge, neck
+  // radius 0.06: folded again after each of 3 patches at 0.104, and the mesh was rebuilt).
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
   const LocalRepairOptions o = local_repair_options(topology_->spacing(), probe_);
@@ -304,16 +331,25 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
     find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
     if (folded.empty()) break;
     if (patch == kMostPatches) return false;
-    const std::optional<Vec3> centre = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
-    if (!centre) return false;
-    const LocalRepairResult r = repair_locally(mesh_, implicit, *centre, o);
+    const std::optional<Vec3> cluster = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
+    if (!cluster) return false;
+    const Vec3 centre =
+        nearest_saddle(topology_->critical_points(), *cluster, 0.5 * o.radius).value_or(*cluster);
+    LocalRepairOptions here = o;
+    for (const Vec3& c : centres)
+      if ((c - centre).norm() <= 0.5 * o.radius) {
+        here.spacing *= 0.5;
+        here.max_spacing *= 0.5;
+        here.radius *= 0.5;
+      }
+    const LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
     if (!r.repaired) {
       stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
       return false;
     }
     adopt_repair(r.new_vertices);
     born.insert(born.end(), r.new_vertices.begin(), r.new_vertices.end());
-    centres.push_back(*centre);
+    centres.push_back(centre);
     removed += r.removed_faces;
     spacing = std::max(spacing, r.spacing);
   }
@@ -356,6 +392,37 @@ void Adapter::rebuild_if_folded() {
   stats_.folds_left = 0;
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Adapter::forget_guarded_vertices() {
+  guarded_vertices_.clear();
+  guard_held_.assign(guard_held_.size(), 0);
+}
+
+void Adapter::place_guarded_vertices() {
+  // The fold guard keeps a split's vertex on its edge where every place on F would turn a new
+  // face over, for the next sub-step's correction to move (SurfaceProbe::project_split_vertex).
+  // An event in a step's last sub-step leaves no next one: the three blobs' necks formed 0.0005
+  // before a frame, and 27 vertices were published 0.006-0.024 off F (dense error 3.06 (T +
+  // eps)), their faces' error read low by the cap at their corners. Their faces were held
+  // meanwhile (split_refused: such a split lowers no error). Now they are projected with the
+  // guard off, the faces around them measured and refined; the fold repair before publishing
+  // mends what the projection turned over.
+  // The splits before publishing have no next sub-step either: unguarded, their folds are the
+  // fold repair's.
+  probe_.set_split_fold_guard(false);
+  if (guarded_vertices_.empty()) return;
+  std::vector<Face> around;
+  for (const Vertex v : guarded_vertices_)
+    if (mesh_.is_alive(v)) {
+      probe_.project_vertex(mesh_, v);
+      mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
+    }
+  forget_guarded_vertices();
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  measure(around);
+  if (options_.structural) split_pass(false);
 }
 
 void Adapter::rebuild_if_crossed() {

@@ -56,6 +56,8 @@ class SurfaceProbe {
   // and when every place does the vertex stays at the edge's midpoint: across a neck thinner
   // than the edges (just after a merge) Newton or the nearest zero along the normal can land
   // on the neck's far wall, and the faces folded there are beyond the fold repair's reach.
+  // The adapter holds the faces of such a vertex and projects it before publishing
+  // (Adapter::place_guarded_vertices).
   bool project_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
   // Where a split puts its new vertex: place_split_vertex, then project_split_vertex (false
   // when the projection failed). The adapter's rule, which its local repairs plan on too.
@@ -64,6 +66,7 @@ class SurfaceProbe {
     return project_split_vertex(mesh, change);
   }
   void set_split_fold_guard(bool on) { split_fold_guard_ = on; }
+  bool split_fold_guard() const { return split_fold_guard_; }
 
   // Distance to the surface of the point with barycentric coordinates b over the triangle
   // (v0, v1, v2) (positions p, parameters uv). Implicit: the first-order distance
@@ -78,8 +81,8 @@ class SurfaceProbe {
   // Implicit only: the signed distance of x to the surface (negative inside), the scalar
   // residual_at() wraps.
   double signed_distance(const Vec3& x) const;
-  // signed_distance of a point x of the triangle p, at most its distance to the nearest
-  // corner (the corners are on the surface).
+  // signed_distance of a point x of the triangle p, at most its distance to a corner plus that
+  // corner's own distance to the surface (nil for a corner on it).
   double signed_distance_in_triangle(const Vec3 p[3], const Vec3& x) const;
 
   // The length within which a vertex's Newton step is trusted to F's linear model: its shortest

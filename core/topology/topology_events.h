@@ -73,6 +73,8 @@ class TopologyMonitor {
   TopologyCheck check(const ImplicitSurface& surface);
   // The mesh was rebuilt after a check() (its critical points are already current).
   void mesh_rebuilt(const Mesh48& mesh) { mesh_topology_ = summarize_topology(mesh); }
+  // F's critical points found at the last reset() or check() (fixed ones: all of them).
+  const std::vector<CriticalPoint>& critical_points() const { return previous_; }
   // The watching grid's spacing (its largest cell side) at the last reset() or check().
   double spacing() const { return spacing_; }
   // Watching a surface with fixed critical points of which none lies in its animation's range:
