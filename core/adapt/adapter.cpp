@@ -311,6 +311,7 @@ const StepStats& Adapter::step(double t) {
   if (topology_) place_guarded_vertices();
   // A static surface stays a fixed point of step(): nothing moved, nothing to look at again.
   if (corrected || stats_.splits || stats_.welds) publish_repaired();
+  if (topology_) remesh_published_folds();
   if (topology_) rebuild_if_crossed();
   renumber_if_scattered();
   finish_stats();

@@ -154,6 +154,9 @@ class Adapter {
   // fold repair before publishing follows.
   void place_guarded_vertices();
   void forget_guarded_vertices();
+  // After publish_repaired: faces it left folded are re-meshed (rebuild_if_folded) and the
+  // frame screened again.
+  void remesh_published_folds();
   // The faces left folded re-meshed by F's contour around them, when they lie together; true
   // when the mesh then has `topology` and no folded face (else the caller re-bases; the mesh
   // may have been changed).
