@@ -415,14 +415,14 @@ void Adapter::forget_guarded_vertices() {
 void Adapter::place_guarded_vertices() {
   // The fold guard keeps a split's vertex on its edge where every place on F would turn a new
   // face over, for the next sub-step's correction to move (SurfaceProbe::project_split_vertex).
-  // An event in a step's last sub-step leaves no next one: the three blobs' necks formed 0.0005
-  // before a frame, and 27 vertices were published 0.006-0.024 off F (dense error 3.06 (T +
-  // eps)), their faces' error read low by the cap at their corners. Their faces were held
-  // meanwhile (split_refused: such a split lowers no error). Now they are projected with the
-  // guard off, the faces around them measured and refined; the fold repair before publishing
-  // mends what the projection turned over.
-  // The splits before publishing have no next sub-step either: unguarded, their folds are the
-  // fold repair's.
+  // The splits before publishing (publish_repaired's, after its fold repair) have no next
+  // sub-step: the three blobs' necks formed 0.0005 before a frame, and 27 such vertices were
+  // published 0.006-0.024 off F (dense error 3.06 (T + eps)), their faces' error read low by
+  // the cap at their corners. So from here on the splits are unguarded (their folds are the
+  // fold repair's), and the vertices the guard kept off F during the step, whose faces were
+  // held meanwhile (split_refused: such a split lowers no error), are projected, the faces
+  // around them measured and refined; the fold repair before publishing mends what the
+  // projection turned over.
   probe_.set_split_fold_guard(false);
   if (guarded_vertices_.empty()) return;
   std::vector<Face> around;
