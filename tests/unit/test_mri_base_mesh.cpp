@@ -58,6 +58,13 @@ OnSpheres on_spheres(const Mesh48& mesh, double inner, double outer) {
   return s;
 }
 
+// The cuberille of `shell` at its options' cell size.
+Mesh48 cuberille_of(const Shell& shell) {
+  CuberilleOptions c;
+  c.cell_size = shell.options.cell_size;
+  return make_cuberille_base_mesh(shell, shell.bounds(), c);
+}
+
 TEST(MriBaseMesh, ShellKeepsTheCavitysSurface) {
   Shell shell(4.0, 9.0);
   shell.options.cell_size = 2.0;
@@ -73,9 +80,7 @@ TEST(MriBaseMesh, ShellKeepsTheCavitysSurface) {
   const test::MeshValidity v = test::check_mesh_validity(mesh);
   EXPECT_TRUE(v.embedded_closed_manifold()) << v.describe();
   // The cuberille alone fills the cavity: one sphere.
-  CuberilleOptions c;
-  c.cell_size = 2.0;
-  const Mesh48 cuberille = make_cuberille_base_mesh(shell, shell.bounds(), c);
+  const Mesh48 cuberille = cuberille_of(shell);
   EXPECT_EQ(summarize_topology(cuberille), (MeshTopologySummary{2, 1}));
   EXPECT_EQ(on_spheres(cuberille, 4.0, 9.0).inner, 0u);
 }
@@ -85,13 +90,10 @@ TEST(MriBaseMesh, BallIsTheCuberille) {
   ball.options.cell_size = 2.0;
   MriBaseMeshInfo info;
   const Mesh48 mesh = make_mri_base_mesh(ball, ball.options, &info);
-  EXPECT_EQ(info.contour_pieces, 1u);
-  EXPECT_EQ(info.pieces_added, 0u);
-  EXPECT_FALSE(info.contour_whole);
   EXPECT_GT(info.coverage, 0.9);
-  CuberilleOptions c;
-  c.cell_size = 2.0;
-  const Mesh48 cuberille = make_cuberille_base_mesh(ball, ball.bounds(), c);
+  EXPECT_EQ(info.contour_pieces, 1u);
+  EXPECT_TRUE(info.pieces_added == 0 && !info.contour_whole);
+  const Mesh48 cuberille = cuberille_of(ball);
   ASSERT_EQ(mesh.n_vertices(), cuberille.n_vertices());
   ASSERT_EQ(mesh.n_faces(), cuberille.n_faces());
   for (const Vertex v : cuberille.live_vertices())
