@@ -447,5 +447,16 @@ TEST(MriEvents, Colin27HoleIntoTheCavityIsRepairedLocally) {
   expect_embedded_within_bound(adapter.mesh(), *surface, options, {2, 1}, "at_1mm");
 }
 
+// Colin27 with closing 2, 10 mm deep: F's 8 mm contour has a second piece, a small lobe that
+// the cuberille's cells join to the largest piece (some cuberille vertices are nearest to it).
+// It is not added: added, it lay on the cuberille's sheet (38 self-intersecting pairs).
+TEST(MriEvents, Colin27BaseAt10MmDoesNotAddALobeTheCuberilleHas) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const auto surface = colin27_layers(2.0);
+  surface->set_time(0.5);
+  const test::MeshValidity v = test::check_mesh_validity(surface->base_mesh());
+  EXPECT_TRUE(v.embedded_closed_manifold()) << v.describe();
+}
+
 }  // namespace
 }  // namespace dynamesh

@@ -120,7 +120,10 @@ Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptio
   PlainMesh merged = base;
   std::vector<std::uint32_t> id(contour.positions.size(), kInvalidIndex);
   for (const Triangle& t : contour.triangles) {
-    if (piece[t[0]] == own) continue;
+    // A piece that some cuberille vertex is nearest to is (at least partly) the cuberille's
+    // too: a lobe that its cells join to the largest piece. Added, it would lie on the
+    // cuberille's sheet (Colin27 closing 2, 10 mm deep: 38 self-intersecting pairs).
+    if (votes[piece[t[0]]] > 0) continue;
     Triangle out;
     for (int c = 0; c < 3; ++c) {
       std::uint32_t& slot = id[t[c]];
@@ -132,7 +135,7 @@ Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptio
     }
     merged.triangles.push_back(out);
   }
-  local.pieces_added = pieces - 1;
+  for (std::size_t k = 0; k < pieces; ++k) local.pieces_added += votes[k] == 0;
   if (info) *info = local;
   if (local.pieces_added == 0) return cuberille;
   return Mesh48::from_base_triangles(std::move(merged.positions), {}, merged.triangles);

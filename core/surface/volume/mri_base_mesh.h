@@ -28,7 +28,7 @@ struct MriBaseMeshOptions {
 struct MriBaseMeshInfo {
   std::size_t contour_pieces = 0;   // 0: no contour (no crossing on its grid, or it failed)
   std::size_t pieces_added = 0;     // contour pieces added to the cuberille
-  std::size_t votes_elsewhere = 0;  // cuberille vertices nearest to an added piece
+  std::size_t votes_elsewhere = 0;  // cuberille vertices nearest to another piece (not added)
   double coverage = 1.0;            // of the cuberille's own contour piece
   bool contour_whole = false;       // the contour was taken instead of the cuberille
 };
