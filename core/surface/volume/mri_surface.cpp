@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "core/surface/parameter_table.h"
-#include "core/surface/volume/cuberille_base_mesh.h"
+#include "core/surface/volume/mri_base_mesh.h"
 
 namespace dynamesh {
 namespace {
@@ -123,9 +123,9 @@ Vec3 MriSurface::first_crossing(const Vec3& origin, const Vec3& direction) const
 }
 
 Mesh48 MriSurface::base_mesh() const {
-  CuberilleOptions options;
+  MriBaseMeshOptions options;
   options.cell_size = kBaseCellSize;
-  return make_cuberille_base_mesh(*this, bounds(), options);
+  return make_mri_base_mesh(*this, options);
 }
 
 std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
