@@ -507,8 +507,13 @@ void Adapter::normal_correction() {
     if (keep) {
       if (carry && !planned) probe_.carry_vertex(mesh_, v, rest_points_[k]);
       if (carried_valid_) carried_[k] = planned ? projection_starts_[k].point : mesh_.position(v);
-      const ProjectionResult r = planned ? project_to_surface(*implicit, projection_starts_[k])
-                                         : project_to_surface(*implicit, mesh_.position(v));
+      // The same projection as SurfaceProbe::project_vertex(_from) below, which full sampling
+      // takes: without the trusted step, the two modes put vertices in different places (twist,
+      // T = 0.001: the first split decision differed in the first step after the mild time).
+      ProjectionOptions o;
+      o.quadratic_beyond = SurfaceProbe::trusted_step(mesh_, v);
+      const ProjectionResult r = planned ? project_to_surface(*implicit, projection_starts_[k], o)
+                                         : project_to_surface(*implicit, mesh_.position(v), o);
       mesh_.position(v) = r.point;
       if (!r.converged) ++failures;
       predictor_.note(v, r.point, r.value, r.gradient, surface_epoch_);
