@@ -643,12 +643,18 @@ bool Adapter::split_refused(Face f) const {
 bool Adapter::pathological_star(const DiamondChange& plan) const {
   if (!options_.angle_guard.weld_first) return false;
   for (int h = 0; h < plan.count; ++h)
-    for (Face f : plan.halves[h].children)
-      if (pathological(f)) return true;
+    for (Face f : plan.halves[h].children) {
+      const auto v = mesh_.vertices(f);
+      if (!angles_clearly_within(mesh_.position(v[0]), mesh_.position(v[1]), mesh_.position(v[2]),
+                                 star_angle_cosines_) &&
+          pathological(f))
+        return true;
+    }
   return false;
 }
 
 void Adapter::weld_pass() {
+  star_angle_cosines_ = AngleCosines(options_.angle_guard.min_deg, options_.angle_guard.max_deg);
   // Post-weld errors of every weldable vertex, in parallel (each sample belongs to the star
   // of its face's newest vertex only, so this costs at most one evaluation per sample).
   const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
