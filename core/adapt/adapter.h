@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/adapt/adapt_options.h"
+#include "core/adapt/angle_pretest.h"
 #include "core/adapt/criteria.h"
 #include "core/adapt/error_predictor.h"
 #include "core/adapt/mesh_snapshot.h"
@@ -131,6 +132,7 @@ class Adapter {
   bool pathological(Face f) const;
   bool split_refused(Face f) const;
   bool pathological_star(const DiamondChange& plan) const;
+  AngleCosines star_angle_cosines_;  // pathological_star's pre-test, set by weld_pass()
   void finish_stats();
   // AdaptOptions::renumber: along a Morton curve when the numbering has scattered.
   void renumber_if_scattered();
