@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "core/adapt/error_model.h"
 #include "core/allocator_policy.h"
@@ -122,21 +121,7 @@ void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_
   const std::uint32_t n = std::max(target_count(mesh, Face(f)), min_count);
   const auto k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   Sample* out = allocate(f, static_cast<std::uint32_t>(k * k));
-  ++patterns_drawn_;
-  // The jitter depends only on where the face is (its corners' positions, bit for bit), the
-  // pattern's size and the epoch (set_pattern_epoch): not on how many patterns were drawn
-  // before it, nor on the face's id. Predictive sampling measures fewer faces and so densifies
-  // fewer; with patterns numbered in the order they were drawn, every pattern drawn after the
-  // first such face differed from full sampling's, and with it the decisions (sinc, T = 0.002:
-  // the first split differed at step 14 of 100). Ids would change with a renumbering.
-  std::uint64_t key = mix(seed_ ^ mix(epoch_ ^ (std::uint64_t{n} << 40)));
-  for (Vertex v : mesh.vertices(Face(f)))
-    for (int i = 0; i < 3; ++i) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &mesh.position(v)[i], sizeof bits);
-      key = mix(key ^ bits);
-    }
-  std::uint64_t state = key;
+  std::uint64_t state = mix(seed_ ^ mix(++patterns_drawn_));
   const double h = 1.0 / k;
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k - i; ++j) {
