@@ -477,5 +477,21 @@ TEST(MriEvents, Colin27FrontalGrooveFramesAreEmbedded) {
   }
 }
 
+// The same sweep in 8 steps: the frontal groove's re-meshed patch crossed the mesh by the end of
+// the step 3 mm deep, and the layer was re-based from its base mesh, whose refinement ran into
+// the triangle budget (60,000 triangles, 21 mm of error; integ15's code: the same in step 8, 19.6
+// mm). A layer is not re-based for a crossing: every step stays within T + eps.
+TEST(MriEvents, CliColin27SweptIn8StepsIsNotReBased) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const test::CliRun run =
+      test::run_cli({"--scene", "mri", "--param", "closing=2", "--param", "depth_max=4", "--steps",
+                     "8", "--max-triangles", "60000", "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  ASSERT_TRUE(run.json.is_object()) << run.out;
+  EXPECT_EQ(run["rebuilds"], 0) << run.err;
+  EXPECT_LE(run["worst_max_sample_error"], 0.5 + 0.125) << run.err;
+  EXPECT_LT(run["peak_triangles"], 20000) << run.err;
+}
+
 }  // namespace
 }  // namespace dynamesh
