@@ -327,12 +327,25 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   std::vector<Vec3> centres;
   std::size_t removed = 0;
   double spacing = 0.0;
+  // A distance field's layer has no re-base to fall back on (rebuild_or_keep): patches made
+  // before a later one failed are undone, the mesh kept as the step left it (Colin27 with
+  // closing 2 in 16 steps: kept, they left 243 crossing pairs next to the cavity's hole 4 mm
+  // deep; undone, 13). The copy is made only when the fold repair left folded faces.
+  std::optional<Mesh48> before;
+  if (topology_->fixed_points()) before.emplace(mesh_);
+  const auto give_up = [&] {
+    if (before && !centres.empty()) {
+      mesh_ = std::move(*before);
+      adopt_repair({});
+    }
+    return false;
+  };
   for (int patch = 0;; ++patch) {
     find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
     if (folded.empty()) break;
-    if (patch == kMostPatches) return false;
+    if (patch == kMostPatches) return give_up();
     const std::optional<Vec3> cluster = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
-    if (!cluster) return false;
+    if (!cluster) return give_up();
     const Vec3 centre =
         nearest_saddle(topology_->critical_points(), *cluster, 0.5 * o.radius).value_or(*cluster);
     LocalRepairOptions here = o;
@@ -345,7 +358,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
     const LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
     if (!r.repaired) {
       stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
-      return false;
+      return give_up();
     }
     adopt_repair(r.new_vertices);
     born.insert(born.end(), r.new_vertices.begin(), r.new_vertices.end());
@@ -353,8 +366,8 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
     removed += r.removed_faces;
     spacing = std::max(spacing, r.spacing);
   }
-  if (centres.empty()) return false;
-  if (!(summarize_topology(mesh_) == topology)) return false;  // the re-base follows
+  if (centres.empty()) return give_up();
+  if (!(summarize_topology(mesh_) == topology)) return give_up();  // the re-base follows
   // Nor may the new faces pass through the mesh's other sheet across the neck (the wide blobs
   // in 20 steps: 111 crossing pairs in the frame before the split, every face facing up).
   std::vector<Face> around;
@@ -363,7 +376,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
       mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
   if (count_face_crossings(mesh_, around) > 0) {
     stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
-    return false;
+    return give_up();
   }
   repair_centres_.insert(repair_centres_.end(), centres.begin(), centres.end());
   stats_.folds_remeshed += stats_.folds_left;
@@ -374,13 +387,18 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
 
 void Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
-  // A distance field's layer keeps its folds reported (folds_left), as without a monitor: no
-  // re-base can follow it (rebuild_or_keep).
-  if (folded == 0 || topology_->fixed_points()) return;
+  // A distance field's layer is re-meshed locally too, never re-based (rebuild_or_keep): where
+  // that fails its folds stay reported (folds_left), as without a monitor. Colin27 with closing
+  // 2 grows a groove along a ridge of the distance field on the frontal midline from 1.25 mm
+  // deep, whose faces the fold repair could not unfold: every frame of a 16-step sweep to 4 mm
+  // was left with 2 to 32 folded faces and 64 to 449 crossing pairs from there on (test
+  // MriEvents.Colin27FrontalGrooveFramesAreEmbedded); re-meshed, none to 3.75 mm.
+  if (folded == 0) return;
   const auto start = std::chrono::steady_clock::now();
   const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
-  if (remesh_folds_locally(now)) {
-    stats_.folds_left = 0;
+  const bool remeshed = remesh_folds_locally(now);
+  if (remeshed || topology_->fixed_points()) {
+    if (remeshed) stats_.folds_left = 0;
     stats_.topology_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
@@ -400,7 +418,7 @@ void Adapter::remesh_published_folds() {
   // (neck radius 0.03) had 5 such faces and 55 crossing pairs, one neck re-meshed in the last
   // sub-step, the other folded by the splits before publishing. They are re-meshed as after
   // the correction (rebuild_if_folded), the patch refined, and the frame screened again.
-  if (stats_.folds_left == 0 || topology_->fixed_points() || !options_.fold_repair.enabled) return;
+  if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
   rebuild_if_folded();
   measure(mesh_.live_faces());
   if (options_.structural) split_pass(false);
@@ -458,8 +476,14 @@ void Adapter::rebuild_if_crossed() {
   if (count_face_crossings(mesh_, near) > 0) {
     stats_.repair_refusals.push_back(
         "the locally repaired region crossed the mesh by the end of the step");
+    // A distance field's layer is not re-based for a crossing (its topology is right): its
+    // base, refined 3 mm deep, ran into the triangle budget (Colin27 with closing 2 swept to 4
+    // mm in 8 steps: 60,000 triangles and 21 mm of error after the frontal groove's patch
+    // crossed the mesh at 3 mm), where kept the step's error stays within T + eps.
     const MeshTopologySummary now = summarize_topology(mesh_);
-    if (rebuild_or_keep(now.euler, now.components)) {
+    if (topology_->fixed_points())
+      stats_.repair_refusals.push_back("no global re-base of a layer; the crossing is kept");
+    else if (rebuild_or_keep(now.euler, now.components)) {
       topology_->mesh_rebuilt(mesh_);
       stats_.rebuilt = true;
     }

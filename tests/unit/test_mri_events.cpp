@@ -382,12 +382,12 @@ TEST(MriEvents, CliDumbbellStartedBeforeItsSplitIsRepairedLocally) {
   EXPECT_EQ(v.euler(), 4);
 }
 
-// Colin27's layers from 0 to 20 mm deep, its mask closed by a ball of `closing` mm.
-std::unique_ptr<MriSurface> colin27_layers(double closing) {
+// Colin27's layers from 0 to `depth_max` mm deep, its mask closed by a ball of `closing` mm.
+std::unique_ptr<MriSurface> colin27_layers(double closing, double depth_max = 20.0) {
   MriOptions o;
   o.closing_radius_mm = closing;
   o.closing_given = true;
-  o.depth_max = 20.0;
+  o.depth_max = depth_max;
   return make_mri_surface(o);
 }
 
@@ -428,11 +428,7 @@ TEST(MriEvents, Colin27SplitsAreReportedWhereTheFloodFillSplits) {
 // and the splits were held: 13.8 mm of error 4 mm deep).
 TEST(MriEvents, Colin27HoleIntoTheCavityIsRepairedLocally) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
-  MriOptions o;
-  o.closing_radius_mm = 2.0;
-  o.closing_given = true;
-  o.depth_max = 4.0;
-  const auto surface = make_mri_surface(o);
+  const auto surface = colin27_layers(2.0, 4.0);
   const AdaptOptions options = mri_suggested_options();
   const auto run = started_adapter(*surface, options, 0.0);
   Adapter& adapter = *run;
@@ -456,6 +452,45 @@ TEST(MriEvents, Colin27BaseAt10MmDoesNotAddALobeTheCuberilleHas) {
   surface->set_time(0.5);
   const test::MeshValidity v = test::check_mesh_validity(surface->base_mesh());
   EXPECT_TRUE(v.embedded_closed_manifold()) << v.describe();
+}
+
+// Colin27 with closing 2 swept 0 to 2.5 mm deep in steps of 0.25 mm: from 1.25 mm on a groove
+// opens along a ridge of the distance field on the frontal midline, near (0, 55, -14) mm, and
+// the fold repair's relaxation could not unfold the faces across it. A distance field's layer
+// kept them (no re-base can follow it), and every frame from 1.25 mm on crossed itself there
+// (64 to 359 self-intersecting pairs, 2 to 21 folded faces left). They are now re-meshed
+// locally from F's contour, as next to an event.
+TEST(MriEvents, Colin27FrontalGrooveFramesAreEmbedded) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const AdaptOptions options = mri_suggested_options();
+  const auto surface = colin27_layers(2.0, 4.0);
+  const auto adapter = started_adapter(*surface, options, 0.0);
+  for (int k = 1; k <= 10; ++k) {
+    const StepStats& stats = adapter->step(k / 16.0);
+    const std::string where = std::to_string(0.25 * k) + " mm";
+    EXPECT_LE(stats.max_error, options.threshold + options.epsilon) << where;
+    const test::MeshValidity v = test::check_mesh_validity(adapter->mesh());
+    EXPECT_TRUE(v.embedded_closed_manifold()) << where << ": " << v.describe();
+    std::vector<Face> folded, slivers;
+    find_bad_faces(adapter->mesh(), *surface, FoldRepairOptions{}.min_angle_deg, folded, slivers);
+    EXPECT_EQ(folded.size(), 0u) << where;
+  }
+}
+
+// The same sweep in 8 steps: the frontal groove's re-meshed patch crossed the mesh by the end of
+// the step 3 mm deep, and the layer was re-based from its base mesh, whose refinement ran into
+// the triangle budget (60,000 triangles, 21 mm of error; integ15's code: the same in step 8, 19.6
+// mm). A layer is not re-based for a crossing: every step stays within T + eps.
+TEST(MriEvents, CliColin27SweptIn8StepsIsNotReBased) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const test::CliRun run =
+      test::run_cli({"--scene", "mri", "--param", "closing=2", "--param", "depth_max=4", "--steps",
+                     "8", "--max-triangles", "60000", "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  ASSERT_TRUE(run.json.is_object()) << run.out;
+  EXPECT_EQ(run["rebuilds"], 0) << run.err;
+  EXPECT_LE(run["worst_max_sample_error"], 0.5 + 0.125) << run.err;
+  EXPECT_LT(run["peak_triangles"], 20000) << run.err;
 }
 
 }  // namespace
