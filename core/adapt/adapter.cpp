@@ -504,7 +504,7 @@ void Adapter::normal_correction() {
   starts_planned_ = false;
   std::size_t failures = 0;
   // Implicit, predictive sampling: F and grad F where each vertex lands are kept for the
-  // predictor (begin_step), as SurfaceProbe::project_vertex(_from) would project it.
+  // predictor (begin_step).
   const auto* implicit =
       probe_.parametric() ? nullptr : &static_cast<const ImplicitSurface&>(surface_);
   const bool keep = implicit && options_.sampling == Sampling::kPredictive;

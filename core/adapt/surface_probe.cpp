@@ -47,14 +47,6 @@ double SurfaceProbe::trusted_step(const Mesh48& mesh, Vertex v) {
   return std::isfinite(shortest) ? std::sqrt(shortest) : 0.0;
 }
 
-bool SurfaceProbe::project_vertex_from(Mesh48& mesh, Vertex v, const ProjectionStart& start) const {
-  ProjectionOptions o;
-  o.quadratic_beyond = trusted_step(mesh, v);
-  const ProjectionResult r = project_to_surface(*implicit_, start, o);
-  mesh.position(v) = r.point;
-  return r.converged;
-}
-
 bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& change) const {
   if (parametric_) return project_vertex(mesh, change.vertex);
   const Vec3 m = mesh.position(change.vertex);

@@ -36,13 +36,11 @@ class SurfaceProbe {
   // otherwise one Newton step -F grad F / |grad F|^2, the normal velocity
   // v = -F_t grad F / |grad F|^2 integrated over the step (F(p) was 0 before it).
   // `start` (implicit only; may be null) receives the point the prediction started from and
-  // F, grad F there: project_vertex_from() continues from it when the surface's time has not
-  // changed since (one evaluation per vertex less in a step without sub-steps).
+  // F, grad F there: the adapter's normal correction continues Newton from it when the
+  // surface's time has not changed since (one evaluation per vertex less in a step without
+  // sub-steps).
   Vec3 predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest,
                         ProjectionStart* start = nullptr) const;
-  // Implicit: v onto the surface by Newton from `start` (predicted_motion's, at the current
-  // time): the same point carry_vertex() and project_vertex() give, bit for bit.
-  bool project_vertex_from(Mesh48& mesh, Vertex v, const ProjectionStart& start) const;
   // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
   // periodic seam); call before project_vertex.
   void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
