@@ -35,16 +35,17 @@ struct AngleCosines {
 
 inline bool angles_clearly_within(const Vec3& a, const Vec3& b, const Vec3& c,
                                   const AngleCosines& limits) {
+  // upper > 0 > lower, or the limits left the pre-test off (AngleCosines): nothing is clear.
+  if (!(limits.upper > 0.0 && limits.lower < 0.0)) return false;
   const Vec3* corner[3] = {&a, &b, &c};
   for (int i = 0; i < 3; ++i) {
     const Vec3 u = *corner[(i + 1) % 3] - *corner[i], v = *corner[(i + 2) % 3] - *corner[i];
     const double d = u.dot(v), q = u.squaredNorm() * v.squaredNorm();
     // Degenerate, or so small or large that the squares leave the normal range: not clear.
     if (!(q > 1e-200 && q < 1e200)) return false;
-    // upper > 0 > lower (else nothing is clear): a cosine >= 0 need only stay below upper,
-    // one < 0 above lower.
+    // A cosine >= 0 need only stay below upper, one < 0 above lower.
     const double limit = d >= 0.0 ? limits.upper : limits.lower;
-    if (!(limits.upper > 0.0 && limits.lower < 0.0 && d * d < limit * limit * q)) return false;
+    if (!(d * d < limit * limit * q)) return false;
   }
   return true;
 }
