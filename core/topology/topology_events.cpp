@@ -103,6 +103,23 @@ MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_
   return s;
 }
 
+std::vector<std::uint32_t> vertex_pieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                         std::size_t vertex_count, std::size_t& count) {
+  Components c(vertex_count);
+  for (const auto& t : triangles) {
+    c.join(t[1], t[0]);
+    c.join(t[2], t[0]);
+  }
+  std::vector<std::uint32_t> piece(vertex_count), label(vertex_count, kInvalidIndex);
+  count = 0;
+  for (std::uint32_t v = 0; v < vertex_count; ++v) {
+    std::uint32_t& l = label[c.find(v)];
+    if (l == kInvalidIndex) l = static_cast<std::uint32_t>(count++);
+    piece[v] = l;
+  }
+  return piece;
+}
+
 MeshTopologySummary summarize_topology(const Mesh48& mesh) {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   triangles.reserve(mesh.n_faces());

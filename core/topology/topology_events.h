@@ -51,6 +51,10 @@ struct MeshTopologySummary {
 MeshTopologySummary summarize_topology(const Mesh48& mesh);
 MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                        std::size_t vertex_count);
+// The piece of each of `vertex_count` vertices, pieces joined through `triangles` and numbered
+// 0 ... count - 1 in the order of their lowest vertex (a vertex in no triangle is a piece).
+std::vector<std::uint32_t> vertex_pieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                         std::size_t vertex_count, std::size_t& count);
 
 struct TopologyCheck {
   std::vector<TopologyEvent> events;

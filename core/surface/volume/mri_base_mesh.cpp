@@ -3,12 +3,12 @@
 #include <array>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
 #include "core/surface/volume/cuberille_base_mesh.h"
 #include "core/topology/contour_base_mesh.h"
+#include "core/topology/topology_events.h"
 
 namespace dynamesh {
 namespace {
@@ -36,28 +36,6 @@ PlainMesh plain(const Mesh48& mesh) {
   return out;
 }
 
-// Piece of each vertex, connected through triangles.
-std::vector<std::uint32_t> vertex_pieces(const PlainMesh& mesh, std::size_t& count) {
-  std::vector<std::uint32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const Triangle& t : mesh.triangles) {
-    parent[find(t[1])] = find(t[0]);
-    parent[find(t[2])] = find(t[0]);
-  }
-  std::vector<std::uint32_t> piece(parent.size()), label(parent.size(), kInvalidIndex);
-  count = 0;
-  for (std::uint32_t v = 0; v < parent.size(); ++v) {
-    std::uint32_t& l = label[find(v)];
-    if (l == kInvalidIndex) l = static_cast<std::uint32_t>(count++);
-    piece[v] = l;
-  }
-  return piece;
-}
-
 }  // namespace
 
 Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptions& options,
@@ -76,7 +54,8 @@ Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptio
     return cuberille;  // no crossing on the contour's grid: the cuberille is all there is
   }
   std::size_t pieces = 0;
-  const std::vector<std::uint32_t> piece = vertex_pieces(contour, pieces);
+  const std::vector<std::uint32_t> piece =
+      vertex_pieces(contour.triangles, contour.positions.size(), pieces);
   local.contour_pieces = pieces;
   // Each cuberille vertex votes for the piece of its nearest contour vertex; both lie on
   // F = 0, so the pieces the cuberille follows get its votes. Brute force: a few thousand
