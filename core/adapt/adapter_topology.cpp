@@ -8,6 +8,7 @@
 
 #include "core/adapt/adapter.h"
 #include "core/geometry/fold_repair.h"
+#include "core/topology/component_repair.h"
 #include "core/topology/contour_base_mesh.h"
 #include "core/topology/face_crossings.h"
 #include "core/topology/local_repair.h"
@@ -97,7 +98,12 @@ bool Adapter::repair_topology_locally(const TopologyCheck& check) {
           "zero: the change is not located");
       return false;
     }
-    const LocalRepairResult r = repair_locally(mesh_, implicit, e.position, o);
+    // A component born or dying touches no other part of the mesh (component_repair.h).
+    const LocalRepairResult r = e.kind == TopologyEventKind::kBirth
+                                    ? add_born_component(mesh_, implicit, e.position, o)
+                                : e.kind == TopologyEventKind::kDeath
+                                    ? remove_dead_component(mesh_, implicit, e.position, o)
+                                    : repair_locally(mesh_, implicit, e.position, o);
     if (!r.repaired) {
       stats_.repair_refusals.push_back(r.why_not);
       continue;
