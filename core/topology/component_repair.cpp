@@ -141,6 +141,7 @@ LocalRepairResult add_born_component(Mesh48& mesh, const ImplicitSurface& surfac
 
 LocalRepairResult remove_dead_component(Mesh48& mesh, const ImplicitSurface& surface,
                                         const Vec3& centre, const LocalRepairOptions& options) {
+  if (!(options.spacing > 0.0)) return refused("death: no contour spacing");
   std::vector<Triangle> triangles;
   std::vector<Face> faces = mesh.live_faces();
   for (const Face f : faces) {
@@ -169,7 +170,7 @@ LocalRepairResult remove_dead_component(Mesh48& mesh, const ImplicitSurface& sur
   ContourGrid grid;
   grid.box.extend(extent.min - grow);
   grid.box.extend(extent.max + grow);
-  grid = make_contour_grid(grid.box, std::max(0.5 * options.spacing, 1e-12));
+  grid = make_contour_grid(grid.box, 0.5 * options.spacing);
   const std::vector<double> values = sample_grid(surface, grid);
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   if (*lo < 0.0 && *hi > 0.0)
