@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/surface/parameter_table.h"
@@ -126,6 +127,18 @@ Mesh48 MriSurface::base_mesh() const {
   MriBaseMeshOptions options;
   options.cell_size = kBaseCellSize;
   return make_mri_base_mesh(*this, options);
+}
+
+double MriSurface::mild_time() const {
+  if (!(depth_max_ > 0.0) || !(depth() > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  MriBaseMeshOptions options;
+  options.cell_size = kBaseCellSize;
+  // Pairs of persistence below mri's suggested T cancelled, as the adapter's monitor does at
+  // that T: a lobe or handle that lives over less depth than that is not a feature the mesh
+  // must show.
+  constexpr double kResolution = 0.5;  // mm
+  const double start = mri_start_depth(fixed_critical_points(kResolution).points, depth(), options);
+  return start == depth() ? std::numeric_limits<double>::quiet_NaN() : start / depth_max_;
 }
 
 std::unique_ptr<MriSurface> make_mri_surface(const MriOptions& options) {
