@@ -484,6 +484,23 @@ TEST(MriEvents, Colin27StartedPastTheHoleIsEmbeddedWithItsTopology) {
                                "first_mesh_1mm");
 }
 
+// Colin27 with closing 2 started 10 mm deep, 0.6 mm before a hole opens through a wall at 10.6
+// mm and 1.9 mm before a split at 11.9 mm: main 2a84c07 (CLI, 60,000-triangle budget) ran into
+// the budget with 6.5 mm of error and 740 degenerate triangles, refining next to the thin wall.
+// Now made 6.6 mm deep, clear of both, and carried to 10 mm (2026-11-24: 8,752 triangles, dense
+// error 0.617 mm). Carried from 6 mm instead it ended with 1,484 self-intersecting pairs: this
+// guards the rule's start, not every start.
+TEST(MriEvents, Colin27Started10MmDeepBeforeAThinWallIsEmbedded) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const auto surface = colin27_layers(2.0, 15.0);
+  AdaptOptions options = mri_suggested_options();
+  options.max_triangles = 60000;  // main's code refined without end
+  const auto run = started_adapter(*surface, options, 10.0 / 15.0);
+  EXPECT_NEAR(15.0 * surface->mild_time(), 6.6, 0.01);
+  EXPECT_FALSE(run->stats().budget_hit);
+  expect_embedded_within_bound(run->mesh(), *surface, options, {2, 1}, "first_mesh_10mm");
+}
+
 // The same 2 mm deep through the binary, for two steps to 3 mm: the first and the last frames
 // embedded, one piece of Euler characteristic 2 (a flood fill of F on a 1 mm grid says so at 1
 // and 2 mm: Colin27StartedPastTheHoleIsEmbeddedWithItsTopology), every step within T + eps.
