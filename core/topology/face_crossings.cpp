@@ -74,14 +74,16 @@ std::size_t count_face_crossings(const Mesh48& mesh, const std::vector<Face>& fa
   }
   if (all.empty() || faces.empty()) return 0;
   // The faces' boxes binned on a uniform grid of cells about twice a face's mean extent, at
-  // most ~ 8 per face in all: a whole re-based mesh (rebuild_if_crossed) is tested against
-  // itself in time about linear in its faces, where testing every pair took seconds at 10^4.
+  // most ~ 8 per face (and 1024 per side) in all: a whole re-based mesh (rebuild_if_crossed) is
+  // tested against itself without testing every pair of its faces.
   const Vec3 size = (bounds.hi - bounds.lo).cwiseMax(Vec3::Constant(1e-300));
   const double budget = 8.0 * static_cast<double>(all.size());
-  double cell =
-      std::max(2.0 * extent / static_cast<double>(all.size()), std::cbrt(size.prod() / budget));
+  double cell = std::max({2.0 * extent / static_cast<double>(all.size()),
+                          std::cbrt(size.prod() / budget), size.maxCoeff() / 1024.0});
+  if (!(cell > 0.0)) cell = 1.0;  // every face a point, all at one place
   std::array<long, 3> dims{};
-  for (int a = 0; a < 3; ++a) dims[a] = std::max(1L, static_cast<long>(std::ceil(size[a] / cell)));
+  for (int a = 0; a < 3; ++a)
+    dims[a] = std::clamp(static_cast<long>(std::ceil(size[a] / cell)), 1L, 1024L);
   const auto range = [&](const Box& b, std::array<long, 3>& lo, std::array<long, 3>& hi) {
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::clamp(static_cast<long>((b.lo[a] - bounds.lo[a]) / cell), 0L, dims[a] - 1);
