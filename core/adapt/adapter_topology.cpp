@@ -468,8 +468,26 @@ void Adapter::rebuild_if_crossed() {
   // blobs in 20 steps, the frame before the split) they can pass through the other sheet while
   // every face still faces up grad F (111 crossing pairs). The faces near each repair are
   // tested against the whole mesh; a mesh that crosses itself is re-based.
-  if (repair_centres_.empty() || stats_.rebuilt) return;
+  // A re-based mesh (rebuild_from_base, in this step) is all new: every face is tested. It
+  // was published unchecked before (issue 16); when it crosses itself there is nothing left
+  // to fall back on, so the frame is published with that said (on stderr and in the step's
+  // repair_refusals), not silently.
+  if (repair_centres_.empty() && !stats_.rebuilt) return;
   const auto start = std::chrono::steady_clock::now();
+  if (stats_.rebuilt) {
+    constexpr std::size_t kEnough = 1000;  // enough to say how badly
+    std::vector<Face> all;
+    all.reserve(mesh_.n_faces());
+    for (const Face f : mesh_.live_faces()) all.push_back(f);
+    if (const std::size_t pairs = count_face_crossings(mesh_, all, kEnough); pairs > 0)
+      stats_.repair_refusals.push_back(
+          "the mesh re-based from F's contour in this step crosses itself (" +
+          std::string(pairs >= kEnough ? "at least " : "") + std::to_string(pairs) +
+          " face pairs that cross, each counted from both faces): this frame is not embedded");
+    stats_.topology_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
   const double reach = 4.0 * topology_->spacing();
   std::vector<Face> near;
   for (const Face f : mesh_.live_faces()) {

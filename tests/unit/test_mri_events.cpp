@@ -14,6 +14,7 @@
 #include "core/adapt/adapter.h"
 #include "core/adapt/criteria.h"
 #include "core/geometry/fold_repair.h"
+#include "core/surface/volume/mri_base_mesh.h"
 #include "core/surface/volume/mri_surface.h"
 #include "core/topology/topology_events.h"
 #include "dense_error.h"
@@ -21,6 +22,7 @@
 #include "test_nifti_files.h"
 #include "test_volume_fixtures.h"
 #include "tests/support/mesh_validity.h"
+#include "topology_measure.h"
 
 namespace dynamesh {
 namespace {
@@ -441,6 +443,86 @@ TEST(MriEvents, Colin27HoleIntoTheCavityIsRepairedLocally) {
   EXPECT_FALSE(stats.rebuilt);
   EXPECT_EQ(stats.splits_held, 0u);
   expect_embedded_within_bound(adapter.mesh(), *surface, options, {2, 1}, "at_1mm");
+}
+
+// Where a layer's first mesh starts (mri_start_depth): Colin27's critical points with closing 2
+// (0.809, 10.600 and 11.942 mm deep) and 8 mm cells, so nothing within 4 mm of one.
+TEST(MriEvents, StartDepthIsClearOfCriticalPointsByHalfACell) {
+  std::vector<CriticalPoint> points(3);
+  points[0].value = -0.809, points[1].value = -10.6, points[2].value = -11.942;
+  EXPECT_EQ(mri_start_depth(points, 0.0), 0.0);
+  EXPECT_EQ(mri_start_depth(points, 1.0), 0.0);  // past the hole: from before it
+  EXPECT_EQ(mri_start_depth(points, 2.0), 0.0);
+  EXPECT_EQ(mri_start_depth(points, 5.0), 5.0);                 // clear: no detour
+  EXPECT_DOUBLE_EQ(mri_start_depth(points, 10.0), 10.6 - 4.0);  // a thin wall ahead
+  EXPECT_DOUBLE_EQ(mri_start_depth(points, 20.0), 20.0);
+  EXPECT_DOUBLE_EQ(mri_start_depth(points, 15.0), 10.6 - 4.0);  // clear of 10.6 and 11.942
+  EXPECT_EQ(mri_start_depth({}, 3.0), 3.0);
+}
+
+// Colin27 with closing 2 started 1 mm deep, past the hole that opens into the cavity 0.81 mm
+// deep (a hole about 1 mm wide, narrower than the base's 8 mm cells). The base covered the
+// cavity over, and split vertices next to the hole projected through it onto the cavity's
+// wall: the first refinement ran into the triangle budget (main 2a84c07 through the CLI,
+// 60,000 triangles, 28 mm of error, 4,310 degenerate triangles). The first mesh is now made
+// before the hole opens and carried to 1 mm (MriSurface::mild_time), the hole repaired
+// locally on the way: embedded, the flood fill's topology, within the bound.
+TEST(MriEvents, Colin27StartedPastTheHoleIsEmbeddedWithItsTopology) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const auto surface = colin27_layers(2.0, 4.0);
+  AdaptOptions options = mri_suggested_options();
+  options.max_triangles = 60000;  // main's code refined without end
+  surface->set_time(0.25);
+  const test::SolidTopology solid = test::solid_topology(
+      [&](const Vec3& p) { return surface->value(p); }, surface->bounds(), 180);
+  EXPECT_EQ(solid.components, 1);
+  EXPECT_EQ(solid.surface_euler, 2);
+  const auto run = started_adapter(*surface, options, 0.25);
+  EXPECT_EQ(surface->time(), 0.25);
+  EXPECT_FALSE(run->stats().budget_hit);
+  expect_embedded_within_bound(run->mesh(), *surface, options, {solid.surface_euler, 1},
+                               "first_mesh_1mm");
+}
+
+// Colin27 with closing 2 started 10 mm deep, 0.6 mm before a hole opens through a wall at 10.6
+// mm and 1.9 mm before a split at 11.9 mm: main 2a84c07 (CLI, 60,000-triangle budget) ran into
+// the budget with 6.5 mm of error and 740 degenerate triangles, refining next to the thin wall.
+// Now made 6.6 mm deep, clear of both, and carried to 10 mm (2026-11-24: 8,752 triangles, dense
+// error 0.617 mm). Carried from 6 mm instead it ended with 1,484 self-intersecting pairs: this
+// guards the rule's start, not every start.
+TEST(MriEvents, Colin27Started10MmDeepBeforeAThinWallIsEmbedded) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const auto surface = colin27_layers(2.0, 15.0);
+  AdaptOptions options = mri_suggested_options();
+  options.max_triangles = 60000;  // main's code refined without end
+  const auto run = started_adapter(*surface, options, 10.0 / 15.0);
+  EXPECT_NEAR(15.0 * surface->mild_time(), 6.6, 0.01);
+  EXPECT_FALSE(run->stats().budget_hit);
+  expect_embedded_within_bound(run->mesh(), *surface, options, {2, 1}, "first_mesh_10mm");
+}
+
+// The same 2 mm deep through the binary, for two steps to 3 mm: the first and the last frames
+// embedded, one piece of Euler characteristic 2 (a flood fill of F on a 1 mm grid says so at 1
+// and 2 mm: Colin27StartedPastTheHoleIsEmbeddedWithItsTopology), every step within T + eps.
+// main 2a84c07: the first frame ran into the budget (60,000 triangles, 24 mm, 7,655 degenerate).
+TEST(MriEvents, CliColin27StartedPastTheHoleHasEmbeddedFrames) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  const auto dir = test::scratch_dir("mri_colin27_t0_2mm");
+  const test::CliRun run = test::run_cli(
+      {"--scene", "mri", "--param", "closing=2", "--param", "depth_max=4", "--t0", "0.5", "--t1",
+       "0.75", "--steps", "2", "--max-triangles", "60000", "--export", dir.string(), "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  ASSERT_TRUE(run.json.is_object()) << run.out;
+  EXPECT_EQ(run.json["budget_hit"], false) << run.err;
+  EXPECT_EQ(run["rebuilds"], 0) << run.err;
+  EXPECT_LE(run["worst_max_sample_error"], 0.5 + 0.125) << run.err;
+  EXPECT_LT(run["peak_triangles"], 20000) << run.err;
+  for (const char* frame : {"frame_00000.ply", "frame_00002.ply"}) {
+    const test::MeshValidity v = test::check_mesh_validity_of_file((dir / frame).string());
+    EXPECT_TRUE(v.embedded_closed_manifold()) << frame << ": " << v.describe();
+    EXPECT_EQ(v.components, 1) << frame;
+    EXPECT_EQ(v.euler(), 2) << frame;
+  }
 }
 
 // Colin27 with closing 2, 10 mm deep: F's 8 mm contour has a second piece, a small lobe that

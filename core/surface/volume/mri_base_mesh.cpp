@@ -1,6 +1,8 @@
 #include "core/surface/volume/mri_base_mesh.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -118,6 +120,24 @@ Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptio
   if (info) *info = local;
   if (local.pieces_added == 0) return cuberille;
   return Mesh48::from_base_triangles(std::move(merged.positions), {}, merged.triangles);
+}
+
+double mri_start_depth(const std::vector<CriticalPoint>& points, double depth,
+                       const MriBaseMeshOptions& options) {
+  const double reach = 0.5 * options.cell_size;
+  // Candidates: `depth` itself, then the depths just clear of each point, shallower first
+  // (each point's depth less `reach`); the deepest clear one wins.
+  std::vector<double> candidates{depth};
+  for (const CriticalPoint& p : points) candidates.push_back(-p.value - reach);
+  std::sort(candidates.begin(), candidates.end(), std::greater<>());
+  for (const double d : candidates) {
+    if (d > depth || d <= 0.0) continue;
+    const bool clear = std::none_of(points.begin(), points.end(), [&](const CriticalPoint& p) {
+      return std::abs(d + p.value) < reach;
+    });
+    if (clear) return d;
+  }
+  return 0.0;
 }
 
 }  // namespace dynamesh

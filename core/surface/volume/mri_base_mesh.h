@@ -12,9 +12,11 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/mesh/mesh48.h"
 #include "core/surface/surface.h"
+#include "core/topology/critical_points.h"
 
 namespace dynamesh {
 
@@ -35,5 +37,18 @@ struct MriBaseMeshInfo {
 
 Mesh48 make_mri_base_mesh(const ImplicitSurface& surface, const MriBaseMeshOptions& options = {},
                           MriBaseMeshInfo* info = nullptr);
+
+// The depth, at most `depth`, at which to start a layer's first mesh (Surface::mild_time): the
+// deepest one no critical point of the distance D (`points`, value = D there) lies within half
+// a cell of, else 0 (the mask's own boundary, where the base is built as the cavity's and
+// lobes' pieces allow: mri_base_mesh.h above). The layers move at unit speed (|grad D| = 1), so
+// a hole, neck, wall or lobe born or vanishing at a critical point is narrower than a cell
+// within half a cell of its depth, and the base's 8 mm cells do not resolve it: Colin27 with
+// closing 2 started 1 or 2 mm deep, past the hole that opens into a cavity 0.81 mm deep, had a
+// base with the cavity covered over; its refinement ran into the triangle budget with 24-28 mm
+// of error where split vertices projected through the hole. From the depth given here the
+// adapter reaches `depth` by motion, and events on the way are repaired as in any run.
+double mri_start_depth(const std::vector<CriticalPoint>& points, double depth,
+                       const MriBaseMeshOptions& options = {});
 
 }  // namespace dynamesh

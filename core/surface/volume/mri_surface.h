@@ -74,6 +74,10 @@ class MriSurface final : public ImplicitSurface, public FixedCriticalField {
   // to the first crossing of the current layer (so the base mesh is a closed sphere-like
   // net even where the layer is not star-shaped), then Newton-projected.
   Mesh48 base_mesh() const override;
+  // Where the layer has a feature narrower than the base's cells next to a critical point of
+  // D (mri_start_depth): an earlier time clear of them, from which the adapter carries the
+  // mesh to the requested one; NaN when the requested time is clear.
+  double mild_time() const override;
 
   double value(const Vec3& p) const override { return layers_.distance(p) + depth(); }
   double value_gradient(const Vec3& p, Vec3& gradient) const override {
