@@ -355,7 +355,20 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
         here.max_spacing *= 0.5;
         here.radius *= 0.5;
       }
-    const LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
+    LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
+    // On a layer, where no re-base follows, once more at half the cut and half the spacing
+    // (groove14's retry): on Colin27 with closing 2 in 16 steps, without it the re-mesh at the
+    // cavity's rim failed in steps 11-13 and 15 (2.75-3.75 mm deep, 6-10 s each). The narrow
+    // patch's strip to a far border once left faces 1.3 mm off F and ran into the triangle budget
+    // (32 steps); such a patch is now refused (local_repair.cpp).
+    if (!r.repaired && before) {
+      LocalRepairOptions narrower = here;
+      narrower.radius *= 0.5;
+      narrower.spacing *= 0.5;
+      narrower.max_spacing *= 0.5;
+      LocalRepairResult w = repair_locally(mesh_, implicit, centre, narrower);
+      if (w.repaired) r = std::move(w);
+    }
     if (!r.repaired) {
       stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
       return give_up();
@@ -392,7 +405,7 @@ void Adapter::rebuild_if_folded() {
   // 2 grows a groove along a ridge of the distance field on the frontal midline from 1.25 mm
   // deep, whose faces the fold repair could not unfold: every frame of a 16-step sweep to 4 mm
   // was left with 2 to 32 folded faces and 64 to 449 crossing pairs from there on (test
-  // MriEvents.Colin27FrontalGrooveFramesAreEmbedded); re-meshed, none to 3.75 mm.
+  // MriEvents.Colin27SweptTo4MmIsEmbeddedAtEveryFrame); re-meshed, none to 3.75 mm.
   if (folded == 0) return;
   const auto start = std::chrono::steady_clock::now();
   const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
