@@ -300,7 +300,7 @@ std::optional<Vec3> nearest_saddle(const std::vector<CriticalPoint>& points, con
 
 }  // namespace
 
-bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
+bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& changed) {
   // Faces left folded next to an event: a neck thinning towards a split narrower than its
   // edges, or tips receding from one just repaired (the wide blobs in 20 steps: 1 to 4 faces
   // within 0.05 of the saddle, twice before the split and once after it). The local repair's
@@ -333,7 +333,9 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   // deep; undone, 13). The copy is made only when the fold repair left folded faces.
   std::optional<Mesh48> before;
   if (topology_->fixed_points()) before.emplace(mesh_);
+  changed = false;
   const auto give_up = [&] {
+    changed = !centres.empty();  // patches made (and undone on a layer: samples redrawn)
     if (before && !centres.empty()) {
       mesh_ = std::move(*before);
       adopt_repair({});
@@ -391,6 +393,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
     stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
     return give_up();
   }
+  changed = true;
   repair_centres_.insert(repair_centres_.end(), centres.begin(), centres.end());
   stats_.folds_remeshed += stats_.folds_left;
   stats_.repair_faces_replaced += removed;
@@ -398,7 +401,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   return true;
 }
 
-void Adapter::rebuild_if_folded() {
+bool Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
   // A distance field's layer is re-meshed locally too, never re-based (rebuild_or_keep): where
   // that fails its folds stay reported (folds_left), as without a monitor. Colin27 with closing
@@ -406,15 +409,16 @@ void Adapter::rebuild_if_folded() {
   // deep, whose faces the fold repair could not unfold: every frame of a 16-step sweep to 4 mm
   // was left with 2 to 32 folded faces and 64 to 449 crossing pairs from there on (test
   // MriEvents.Colin27SweptTo4MmIsEmbeddedAtEveryFrame); re-meshed, none to 3.75 mm.
-  if (folded == 0) return;
+  if (folded == 0) return false;
   const auto start = std::chrono::steady_clock::now();
   const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
-  const bool remeshed = remesh_folds_locally(now);
+  bool changed = false;
+  const bool remeshed = remesh_folds_locally(now, changed);
   if (remeshed || topology_->fixed_points()) {
     if (remeshed) stats_.folds_left = 0;
     stats_.topology_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
+    return changed;
   }
   rebuild_from_base(now.euler, now.components);
   topology_->mesh_rebuilt(mesh_);
@@ -423,6 +427,7 @@ void Adapter::rebuild_if_folded() {
   stats_.folds_left = 0;
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
 }
 
 void Adapter::remesh_published_folds() {
@@ -431,8 +436,11 @@ void Adapter::remesh_published_folds() {
   // (neck radius 0.03) had 5 such faces and 55 crossing pairs, one neck re-meshed in the last
   // sub-step, the other folded by the splits before publishing. They are re-meshed as after
   // the correction (rebuild_if_folded), the patch refined, and the frame screened again.
+  // A layer whose folds could not be re-meshed is as publish_repaired left it: no measurement,
+  // split pass or screen again (each step with folds left cost a measurement of every face,
+  // a split pass and up to four fold repairs, with their own measurements and split passes).
   if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
-  rebuild_if_folded();
+  if (!rebuild_if_folded()) return;
   measure(mesh_.live_faces());
   if (options_.structural) split_pass(false);
   publish_repaired();
