@@ -439,11 +439,18 @@ void Adapter::remesh_published_folds() {
   // A layer whose folds could not be re-meshed is as publish_repaired left it: no measurement,
   // split pass or screen again (each step with folds left cost a measurement of every face,
   // a split pass and up to four fold repairs, with their own measurements and split passes).
-  if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
-  if (!rebuild_if_folded()) return;
-  measure(mesh_.live_faces());
-  if (options_.structural) split_pass(false);
-  publish_repaired();
+  // On a layer (no re-base to fall back on) the patch's refinement and the screen after it may
+  // leave faces folded again: they are re-meshed up to twice more (Colin27 with closing 2 in 8
+  // steps: the frame 2.5 mm deep kept 2 folded faces and 39 crossing pairs in the frontal
+  // groove after one re-mesh; now none). Elsewhere once, as before.
+  for (int round = 0; round < 3; ++round) {
+    if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
+    if (!rebuild_if_folded()) return;
+    measure(mesh_.live_faces());
+    if (options_.structural) split_pass(false);
+    publish_repaired();
+    if (!topology_->fixed_points()) return;
+  }
 }
 
 void Adapter::forget_guarded_vertices() {
