@@ -149,8 +149,9 @@ class Adapter {
   // After a local repair: the stores follow the mesh's surgery; `born` are its new vertices.
   void adopt_repair(const std::vector<Vertex>& born);
   // After the geometric correction and its fold repair: rebuilds when faces are still turned
-  // over (next to an event the neck moves fast and the coarse rebuilt mesh folds).
-  void rebuild_if_folded();
+  // over (next to an event the neck moves fast and the coarse rebuilt mesh folds). Returns
+  // whether the mesh was changed (re-meshed, rebuilt, or patches made and undone).
+  bool rebuild_if_folded();
   // Before a frame is published: the split vertices the fold guard kept off F this step are
   // projected onto it (the guard off), and the faces around them measured and refined; the
   // fold repair before publishing follows.
@@ -161,8 +162,8 @@ class Adapter {
   void remesh_published_folds();
   // The faces left folded re-meshed by F's contour around them, when they lie together; true
   // when the mesh then has `topology` and no folded face (else the caller re-bases; the mesh
-  // may have been changed).
-  bool remesh_folds_locally(const MeshTopologySummary& topology);
+  // may have been changed: `changed` says so).
+  bool remesh_folds_locally(const MeshTopologySummary& topology, bool& changed);
   // At the end of a step with local repairs: re-bases when the faces near them cross the mesh.
   void rebuild_if_crossed();
   // A global re-base to a mesh of Euler characteristic `euler` and `components` components

@@ -306,7 +306,7 @@ std::optional<Vec3> nearest_saddle(const std::vector<CriticalPoint>& points, con
 
 }  // namespace
 
-bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
+bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& changed) {
   // Faces left folded next to an event: a neck thinning towards a split narrower than its
   // edges, or tips receding from one just repaired (the wide blobs in 20 steps: 1 to 4 faces
   // within 0.05 of the saddle, twice before the split and once after it). The local repair's
@@ -339,7 +339,9 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   // deep; undone, 13). The copy is made only when the fold repair left folded faces.
   std::optional<Mesh48> before;
   if (topology_->fixed_points()) before.emplace(mesh_);
+  changed = false;
   const auto give_up = [&] {
+    changed = !centres.empty();  // patches made (and undone on a layer: samples redrawn)
     if (before && !centres.empty()) {
       mesh_ = std::move(*before);
       adopt_repair({});
@@ -361,7 +363,20 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
         here.max_spacing *= 0.5;
         here.radius *= 0.5;
       }
-    const LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
+    LocalRepairResult r = repair_locally(mesh_, implicit, centre, here);
+    // On a layer, where no re-base follows, once more at half the cut and half the spacing
+    // (groove14's retry): on Colin27 with closing 2 in 16 steps, without it the re-mesh at the
+    // cavity's rim failed in steps 11-13 and 15 (2.75-3.75 mm deep, 6-10 s each). The narrow
+    // patch's strip to a far border once left faces 1.3 mm off F and ran into the triangle budget
+    // (32 steps); such a patch is now refused (local_repair.cpp).
+    if (!r.repaired && before) {
+      LocalRepairOptions narrower = here;
+      narrower.radius *= 0.5;
+      narrower.spacing *= 0.5;
+      narrower.max_spacing *= 0.5;
+      LocalRepairResult w = repair_locally(mesh_, implicit, centre, narrower);
+      if (w.repaired) r = std::move(w);
+    }
     if (!r.repaired) {
       stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
       return give_up();
@@ -384,6 +399,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
     stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
     return give_up();
   }
+  changed = true;
   repair_centres_.insert(repair_centres_.end(), centres.begin(), centres.end());
   stats_.folds_remeshed += stats_.folds_left;
   stats_.repair_faces_replaced += removed;
@@ -391,23 +407,24 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology) {
   return true;
 }
 
-void Adapter::rebuild_if_folded() {
+bool Adapter::rebuild_if_folded() {
   const std::size_t folded = stats_.folds_left;  // what repair() could not unfold
   // A distance field's layer is re-meshed locally too, never re-based (rebuild_or_keep): where
   // that fails its folds stay reported (folds_left), as without a monitor. Colin27 with closing
   // 2 grows a groove along a ridge of the distance field on the frontal midline from 1.25 mm
   // deep, whose faces the fold repair could not unfold: every frame of a 16-step sweep to 4 mm
   // was left with 2 to 32 folded faces and 64 to 449 crossing pairs from there on (test
-  // MriEvents.Colin27FrontalGrooveFramesAreEmbedded); re-meshed, none to 3.75 mm.
-  if (folded == 0) return;
+  // MriEvents.Colin27SweptTo4MmIsEmbeddedAtEveryFrame); re-meshed, none to 3.75 mm.
+  if (folded == 0) return false;
   const auto start = std::chrono::steady_clock::now();
   const MeshTopologySummary now = summarize_topology(mesh_);  // F's (check_topology)
-  const bool remeshed = remesh_folds_locally(now);
+  bool changed = false;
+  const bool remeshed = remesh_folds_locally(now, changed);
   if (remeshed || topology_->fixed_points()) {
     if (remeshed) stats_.folds_left = 0;
     stats_.topology_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
+    return changed;
   }
   rebuild_from_base(now.euler, now.components);
   topology_->mesh_rebuilt(mesh_);
@@ -416,6 +433,7 @@ void Adapter::rebuild_if_folded() {
   stats_.folds_left = 0;
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
 }
 
 void Adapter::remesh_published_folds() {
@@ -424,11 +442,21 @@ void Adapter::remesh_published_folds() {
   // (neck radius 0.03) had 5 such faces and 55 crossing pairs, one neck re-meshed in the last
   // sub-step, the other folded by the splits before publishing. They are re-meshed as after
   // the correction (rebuild_if_folded), the patch refined, and the frame screened again.
-  if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
-  rebuild_if_folded();
-  measure(mesh_.live_faces());
-  if (options_.structural) split_pass(false);
-  publish_repaired();
+  // A layer whose folds could not be re-meshed is as publish_repaired left it: no measurement,
+  // split pass or screen again (each step with folds left cost a measurement of every face,
+  // a split pass and up to four fold repairs, with their own measurements and split passes).
+  // On a layer (no re-base to fall back on) the patch's refinement and the screen after it may
+  // leave faces folded again: they are re-meshed up to twice more (Colin27 with closing 2 in 8
+  // steps: the frame 2.5 mm deep kept 2 folded faces and 39 crossing pairs in the frontal
+  // groove after one re-mesh; now none). Elsewhere once, as before.
+  for (int round = 0; round < 3; ++round) {
+    if (stats_.folds_left == 0 || !options_.fold_repair.enabled) return;
+    if (!rebuild_if_folded()) return;
+    measure(mesh_.live_faces());
+    if (options_.structural) split_pass(false);
+    publish_repaired();
+    if (!topology_->fixed_points()) return;
+  }
 }
 
 void Adapter::forget_guarded_vertices() {

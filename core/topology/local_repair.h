@@ -9,7 +9,11 @@
 //     refinement edge must be shared or lead to a coarser face, Mesh48::check), and grown by
 //     one face that is not a diamond's (splitting a diamond to make one if need be) wherever
 //     a border loop has an odd number of edges: the new triangles beyond a loop number as
-//     many as its edges, modulo 2, and a perfect matching needs an even count.
+//     many as its edges, modulo 2, and a perfect matching needs an even count. Where the
+//     faces near the event are coarse against the radius (a brain layer's, up to 10 mm
+//     across), an attempt first splits them until none within `radius` has an edge longer
+//     than radius / 2, so that the cut stays near the event. A patch whose new triangles
+//     stray from F by more than its spacing is refused.
 //  2. Patch: marching tetrahedra of F on a grid of `spacing` around the event (a grid point on
 //     the event itself, so that a neck thinner than the grid is not missed), the triangles
 //     with all corners within radius - spacing / 2, their corners on F (root on their grid
