@@ -719,11 +719,14 @@ void Adapter::weld_pass() {
   };
   std::vector<double>& key = weld_keys_;
   std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
-  key.assign(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
-  ambiguous.assign(static_cast<std::size_t>(n), 0);
+  // Every slot is written by the loop (no clearing pass before it).
+  key.resize(static_cast<std::size_t>(n));
+  ambiguous.resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     DiamondChange plan;
+    key[static_cast<std::size_t>(i)] = std::numeric_limits<double>::quiet_NaN();
+    ambiguous[static_cast<std::size_t>(i)] = 0;
     if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
     bool a = false;
     double known = std::numeric_limits<double>::quiet_NaN();
@@ -731,24 +734,24 @@ void Adapter::weld_pass() {
     key[static_cast<std::size_t>(i)] = a ? known : k;  // ambiguous: its post-weld error, for now
     ambiguous[static_cast<std::size_t>(i)] = a;
   }
-  // Few (predictive sampling only): measured one star at a time. Each face belongs to the
-  // star of its newest vertex only (Mesh48::plan_weld), so measuring one star changes no other
-  // star's range or samples: each is still ambiguous, with the same post-weld error.
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (!ambiguous[static_cast<std::size_t>(i)]) continue;
-    DiamondChange plan;
-    double& k = key[static_cast<std::size_t>(i)];
-    k = mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)
-            ? decide_measured(plan, k)
-            : std::numeric_limits<double>::quiet_NaN();
-  }
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
   };
+  // Ambiguous stars are few (predictive sampling only), measured one star at a time. Each face
+  // belongs to the star of its newest vertex only (Mesh48::plan_weld), so measuring one star
+  // changes no other star's range or samples: each is still ambiguous, with the same post-weld
+  // error, and no other key changes, so the queue is filled in the same sweep.
   std::priority_queue<WeldEntry> queue;
-  for (std::int64_t i = 0; i < n; ++i)
-    if (!std::isnan(key[static_cast<std::size_t>(i)]))
-      queue.push(entry(key[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(i)));
+  for (std::int64_t i = 0; i < n; ++i) {
+    double& k = key[static_cast<std::size_t>(i)];
+    if (ambiguous[static_cast<std::size_t>(i)]) {
+      DiamondChange plan;
+      k = mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)
+              ? decide_measured(plan, k)
+              : std::numeric_limits<double>::quiet_NaN();
+    }
+    if (!std::isnan(k)) queue.push(entry(k, static_cast<std::uint32_t>(i)));
+  }
   tracker_->touched.clear();
   DiamondChange plan;
   while (!queue.empty()) {
@@ -924,19 +927,21 @@ void Adapter::finish_stats() {
   stats_.max_error = s.max_error;
   stats_.mean_error = s.mean_error;
   stats_.samples = s.samples;
-  std::size_t kept = 0;
-  for (Vertex v : mesh_.live_vertices()) kept += tracker_->birth_step[v.idx] < step_;
-  stats_.vertices_kept = step_ == 0 ? 0 : kept;
+  stats_.vertices_kept = 0;
   if (step_ > 0) {
     // Survivors: alive now and born before this step, so alive at its start (an id freed by
-    // a weld and reused by a split this step carries this step's birth).
+    // a weld and reused by a split this step carries this step's birth). Counted and measured
+    // in one sweep over the vertices.
+    std::size_t kept = 0;
     double sum = 0, worst = 0;
     for (Vertex v : mesh_.live_vertices()) {
       if (tracker_->birth_step[v.idx] >= step_) continue;
+      ++kept;
       const double d = (mesh_.position(v) - start_positions_[v.idx]).norm();
       sum += d;
       worst = std::max(worst, d);
     }
+    stats_.vertices_kept = kept;
     stats_.kept_fraction = vertices_at_start_
                                ? static_cast<double>(kept) / static_cast<double>(vertices_at_start_)
                                : 1.0;

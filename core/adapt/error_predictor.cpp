@@ -61,30 +61,12 @@ Change change(const float (&now)[3][3], const float (&then)[3][3]) {
   return out;
 }
 
-// The same where the residual is scalar (implicit: only the first of each edge's three
-// components is set, the others are zero in both): the norm of (x, 0, 0) is sqrt(x * x), which
-// is |x| exactly (x, a difference of two floats, neither underflows nor overflows when squared
-// in double), so this is change() to the bit, without its three square roots.
-Change scalar_change(const float (&now)[3][3], const float (&then)[3][3]) {
-  Change out;
-  for (int e = 0; e < 3; ++e) {
-    const double d = std::abs(static_cast<double>(now[e][0]) - then[e][0]);
-    out.largest = std::max(out.largest, d);
-    out.sum += d;
-  }
-  return out;
-}
-
-// The largest change over the triangle of the residual's quadratic part,
-// sum_e b_i b_j dc_e: exact where the residual is scalar (implicit; scalar_maximum, at most
-// the estimate below and at least 3/4 of it: x = (1, 1, 0) gives 1/4, not 1/3), else with the
-// maxima of sum b_i b_j (1/3) and of b_i b_j (1/4).
-double quadratic_change(const float (&now)[3][3], const float (&then)[3][3], bool scalar) {
-  if (scalar) {
-    double x[3];
-    for (int e = 0; e < 3; ++e) x[e] = static_cast<double>(now[e][0]) - then[e][0];
-    return scalar_maximum(x[0], x[1], x[2]);
-  }
+// The largest change over the triangle of the residual's quadratic part, sum_e b_i b_j dc_e,
+// where the residual is a vector (parametric): with the maxima of sum b_i b_j (1/3) and of
+// b_i b_j (1/4). Where it is scalar (implicit) select() takes its exact maximum
+// (scalar_maximum, at most this estimate and at least 3/4 of it: x = (1, 1, 0) gives 1/4, not
+// 1/3).
+double quadratic_change(const float (&now)[3][3], const float (&then)[3][3]) {
   const Change c = change(now, then);
   return std::min(c.largest / 3.0, c.sum / 4.0);
 }
@@ -224,62 +206,112 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
                             std::vector<Face>& measure) {
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  flags_.assign(static_cast<std::size_t>(n), 0);
+  flags_.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
   const std::uint64_t phase = step_ % kRotation;
   // The strain term covers faces carried with the material across a seam; a face that moved
   // over the surface instead is covered by the slide guard (the whole move counts as slide).
   const double strain_gain = carried_ ? kStrainGain : 0.0;
+  const bool implicit = !probe.parametric();
+  // The curvature estimate is the largest rounded ratio |n_b - n_a| / chord over the edges.
+  // An edge can raise a maximum c only if that ratio r exceeds c; then, with q the normals'
+  // squared difference and u the unit roundoff, q > c^2 chord^2 (1 - 4u), and with
+  // low = fl(c^2 kBelow) the rounded fl(low fl(chord^2)) is at most c^2 chord^2 kBelow (1 + u)^4,
+  // below that for kBelow = 1 - 16 eps = 1 - 32u: every edge that can raise it passes the test
+  // q > low chord^2, and only those pay a square root and a division (as estimate_substeps does
+  // for the strain). The result is the same maximum in any order of the edges. NaN fails the
+  // test, as std::max ignored it.
+  constexpr double kBelow = 1.0 - 16.0 * std::numeric_limits<double>::epsilon();
   double curvature = 0.0;
-#pragma omp parallel for schedule(dynamic, 1024) reduction(max : curvature) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    if (!mesh.is_alive(f)) continue;
-    const auto k = static_cast<std::size_t>(i);
-    const auto v = mesh.vertices(f);
-    Vec3 edge[3];  // edge e from corner e + 1 to corner e + 2
-    float moved = 0.0f, slid = 0.0f, shortest2 = std::numeric_limits<float>::infinity();
-    for (int e = 0; e < 3; ++e) {
-      const Vertex a = v[(e + 1) % 3], b = v[(e + 2) % 3];
-      edge[e] = mesh.position(b) - mesh.position(a);
-      const double chord2 = edge[e].squaredNorm();
-      moved = std::max(moved, moved_[v[e].idx]);
-      slid = std::max(slid, slid_[v[e].idx]);
-      shortest2 = std::min(shortest2, static_cast<float>(chord2));
-      // Along a normal section of radius rho, the chord and the unit normals' difference are
-      // 2 rho sin(phi / 2) and 2 sin(phi / 2): their ratio is exactly 1 / rho. A normal that
-      // also turns about the edge (geodesic torsion) only makes the estimate larger. Each edge
-      // once: from the face that sees it from its lower vertex id (or its only face).
-      if ((a.idx < b.idx || !mesh.neighbor(f, e).is_valid()) && chord2 > 0)
-        curvature = std::max(
-            curvature, (frame_[b.idx].normal - frame_[a.idx].normal).norm() / std::sqrt(chord2));
+#pragma omp parallel reduction(max : curvature) if (n > kParallelMin)
+  {
+    curvature = 0.0;  // (each thread's; the maximum is at least 0 anyway)
+    double low = 0.0;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Face f(static_cast<std::uint32_t>(i));
+      const auto k = static_cast<std::size_t>(i);
+      if (!mesh.is_alive(f)) {
+        flags_[k] = 0;
+        continue;
+      }
+      const auto v = mesh.vertices(f);
+      Vec3 edge[3];  // edge e from corner e + 1 to corner e + 2
+      double chord2[3], chord[3];
+      float moved = 0.0f, slid = 0.0f, shortest2 = std::numeric_limits<float>::infinity();
+      for (int e = 0; e < 3; ++e) {
+        const Vertex a = v[(e + 1) % 3], b = v[(e + 2) % 3];
+        edge[e] = mesh.position(b) - mesh.position(a);
+        chord2[e] = edge[e].squaredNorm();
+        chord[e] = std::sqrt(chord2[e]);  // what edge.norm() computes
+        moved = std::max(moved, moved_[v[e].idx]);
+        slid = std::max(slid, slid_[v[e].idx]);
+        shortest2 = std::min(shortest2, static_cast<float>(chord2[e]));
+        // Along a normal section of radius rho, the chord and the unit normals' difference are
+        // 2 rho sin(phi / 2) and 2 sin(phi / 2): their ratio is exactly 1 / rho. A normal that
+        // also turns about the edge (geodesic torsion) only makes the estimate larger. Each edge
+        // once: from the face that sees it from its lower vertex id (or its only face).
+        if ((a.idx < b.idx || !mesh.neighbor(f, e).is_valid()) && chord2[e] > 0) {
+          const double q = (frame_[b.idx].normal - frame_[a.idx].normal).squaredNorm();
+          if (q > low * (chord[e] * chord[e])) {
+            curvature = std::max(curvature, std::sqrt(q) / chord[e]);
+            low = curvature * curvature * kBelow;
+          }
+        }
+      }
+      travel_[k] += moved;  // reset by record()
+      const bool slid_far =
+          !(slid * slid <= static_cast<float>(kMaxSlideFraction * kMaxSlideFraction) * shortest2);
+      bool needed = !has_reference_[k] || !samples.measured(f) || samples.densified(f) ||
+                    rotation_[k] == phase;
+      if (!needed && slid_far) {
+        flags_[k] = 2;  // measured for its slide alone (guarded())
+        continue;
+      }
+      if (!needed) {
+        // The face's frames are this step's (begin_step), its reference its last measurement's.
+        double quadratic, stretch;
+        Change cubic;
+        if (implicit) {
+          // The residual is scalar: only each edge's first components (c, d) and its length
+          // enter, computed with coefficients()'s own operations (the same floats; the length is
+          // the chord), without filling the zeros. The
+          // cubic change is change()'s to the bit: the norm of (x, 0, 0) is sqrt(x * x), which is
+          // |x| exactly (x, a difference of two floats, neither underflows nor overflows when
+          // squared in double).
+          const Coefficients& then = reference_[k];
+          double x[3];
+          float length[3];
+          cubic = Change{};
+          for (int e = 0; e < 3; ++e) {
+            const double start = edge[e].dot(frame_[v[(e + 1) % 3].idx].a);
+            const double end = edge[e].dot(frame_[v[(e + 2) % 3].idx].a);
+            x[e] = static_cast<double>(static_cast<float>(0.5 * (start - end))) - then.c[e][0];
+            const double d = std::abs(
+                static_cast<double>(static_cast<float>(-0.5 * (start + end))) - then.d[e][0]);
+            cubic.largest = std::max(cubic.largest, d);
+            cubic.sum += d;
+            length[e] = static_cast<float>(chord[e]);
+          }
+          quadratic = scalar_maximum(x[0], x[1], x[2]);
+          stretch = strain(length, then.length);
+        } else {
+          const Coefficients now = coefficients(mesh, probe, v, edge);
+          quadratic = quadratic_change(now.c, reference_[k].c);
+          cubic = change(now.d, reference_[k].d);
+          stretch = strain(now.length, reference_[k].length);
+        }
+        double offset = 0.0;
+        for (Vertex x : v) offset = std::max(offset, frame_[x.idx].offset);
+        const double residual =
+            kSafety * (quadratic + std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) +
+                       offset + strain_gain * stretch * samples.face_error(f));
+        // The reading follows the residual at the samples and, near the split bound, on the
+        // edges (SampleStore::set_peak_search).
+        bound_[k] = residual * samples.reading_gain(f, residual);
+        needed = would_split(f, samples.face_error(f) + bound_[k]);
+      }
+      flags_[k] = needed;
     }
-    travel_[k] += moved;  // reset by record()
-    const bool slid_far =
-        !(slid * slid <= static_cast<float>(kMaxSlideFraction * kMaxSlideFraction) * shortest2);
-    bool needed =
-        !has_reference_[k] || !samples.measured(f) || samples.densified(f) || rotation_[k] == phase;
-    if (!needed && slid_far) {
-      flags_[k] = 2;  // measured for its slide alone (guarded())
-      continue;
-    }
-    if (!needed) {
-      // The face's frames are this step's (begin_step), its reference its last measurement's.
-      const Coefficients now = coefficients(mesh, probe, v, edge);
-      const double quadratic = quadratic_change(now.c, reference_[k].c, !probe.parametric());
-      const Change cubic = probe.parametric() ? change(now.d, reference_[k].d)
-                                              : scalar_change(now.d, reference_[k].d);
-      double offset = 0.0;
-      for (Vertex x : v) offset = std::max(offset, frame_[x.idx].offset);
-      const double stretch = strain(now.length, reference_[k].length);
-      const double residual =
-          kSafety * (quadratic + std::min(cubic.largest * kCubicSum, cubic.sum * kCubicEdge) +
-                     offset + strain_gain * stretch * samples.face_error(f));
-      // The reading follows the residual at the samples and, near the split bound, on the
-      // edges (SampleStore::set_peak_search).
-      bound_[k] = residual * samples.reading_gain(f, residual);
-      needed = would_split(f, samples.face_error(f) + bound_[k]);
-    }
-    flags_[k] = needed;
   }
   // The smallest radius over the steps any reference can date from (kRotation): the shape
   // a face was measured on counts as much as today's.

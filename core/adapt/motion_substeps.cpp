@@ -39,8 +39,10 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
   // edges came first, i.e. on how the faces were shared out between threads (issue 13).
   // (Assumes low * l is not subnormal: squared lengths and strains far above 1e-300.)
   constexpr double kBelow = 1.0 - 4.0 * std::numeric_limits<double>::epsilon();
-  // Every interior edge is seen from both faces: the bound is a maximum, so that is harmless
-  // and cheaper than deduplicating.
+  // Each edge once: an interior edge from the face that sees it from its lower vertex id (its
+  // other face sees it reversed: the same squared lengths to the bit, since a - b = -(b - a)
+  // exactly, so the maximum is the same), a boundary edge from its only face. The twin is in
+  // the face's own record, which the corners were just read from.
 #pragma omp parallel reduction(max : strain2) if (n > kParallelMin)
   {
     strain2 = 0.0;  // (each thread's; the maximum is at least 0 anyway)
@@ -53,6 +55,8 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
       for (int j = 0; j < 3; ++j) {
         const Vertex a = v[static_cast<std::size_t>(j)],
                      b = v[static_cast<std::size_t>((j + 1) % 3)];
+        // (edge j runs from corner j to corner j + 1: the local edge opposite corner j + 2)
+        if (a.idx > b.idx && mesh.neighbor(f, (j + 2) % 3).is_valid()) continue;
         const double length2 = (mesh.position(a) - mesh.position(b)).squaredNorm();
         const double moved2 = (displacement[a.idx] - displacement[b.idx]).squaredNorm();
         // False for NaN (ignored, as before); the division only on a candidate maximum, a few

@@ -16,10 +16,19 @@ namespace {
 
 struct Frame {
   PrincipalCurvatures k;
-  double l1 = 0, l2 = 0;  // curvature magnitudes as used by Equation 1
+  double l1 = 0, l2 = 0;  // curvature magnitudes |k1|, |k2| (Equation 1 normalises them: Weights)
 };
 
-// One thread's partial sum of a vertex's one-ring (compute_ring_centroids).
+// How Equation 1 reads a frame's curvature magnitudes: raw, or normalised to [0, 1] by the
+// mesh-wide range (the original implementation's choice), applied where the move reads them
+// rather than in a pass of its own over every frame.
+struct Weights {
+  bool raw = false;
+  double lo = 0.0, range = 0.0;
+  double operator()(double l) const { return raw ? l : range > 0 ? (l - lo) / range : 0.0; }
+};
+
+// One thread's partial sum of a vertex's one-ring (sum_rings).
 struct RingSum {
   Vec3 sum{Vec3::Zero()};
   Vec3 normal{Vec3::Zero()};  // area-weighted face normals (the mesh normal, frame reuse)
@@ -109,7 +118,9 @@ using Work = SmoothingWorkspace::Buffers;
 // two threads at most.
 constexpr int kRingChunks = 2;
 
-void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
+// The face pass: each range's sums (ring_sums); returns the number of ranges. Each vertex's
+// sums are then combined by combine_ring.
+int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
   const std::size_t nv = mesh.vertex_capacity();
   const auto nf = static_cast<std::int64_t>(mesh.face_capacity());
   const int chunks = nf > kParallelMin ? kRingChunks : 1;
@@ -161,35 +172,35 @@ void compute_ring_centroids(const Mesh48& mesh, bool scale_invariant, Work& w) {
   w.boundary.resize(nv);
   w.mesh_normal.resize(nv);
   w.mean_edge.resize(nv);
-  const auto n = static_cast<std::int64_t>(nv);
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const Vertex v(static_cast<std::uint32_t>(i));
-    const RingSum* total = &w.ring_sums[0][k];
-    std::optional<RingSum> added;  // (not constructed unless two ranges touched the vertex)
-    // The ranges that touched it, in order; the first as it is (x + 0 is not always x: -0).
-    for (std::size_t c = 1; c < static_cast<std::size_t>(chunks); ++c) {
-      const RingSum& r = w.ring_sums[c][k];
-      if (!(r.edges || r.touched)) continue;
-      if (!(total->edges || total->touched)) {
-        total = &r;
-        continue;
-      }
-      if (!added) total = &added.emplace(*total);
-      added->sum += r.sum;
-      added->normal += r.normal;
-      added->weight += r.weight;
-      added->length += r.length;
-      added->edges = static_cast<std::uint16_t>(added->edges + r.edges);
-      added->boundary |= r.boundary;
+  return chunks;
+}
+
+// Vertex v's centroid, boundary flag, mesh normal and mean edge from the ranges' sums.
+inline void combine_ring(const Mesh48& mesh, Vertex v, int chunks, Work& w) {
+  const auto k = static_cast<std::size_t>(v.idx);
+  const RingSum* total = &w.ring_sums[0][k];
+  std::optional<RingSum> added;  // (not constructed unless two ranges touched the vertex)
+  // The ranges that touched it, in order; the first as it is (x + 0 is not always x: -0).
+  for (std::size_t c = 1; c < static_cast<std::size_t>(chunks); ++c) {
+    const RingSum& r = w.ring_sums[c][k];
+    if (!(r.edges || r.touched)) continue;
+    if (!(total->edges || total->touched)) {
+      total = &r;
+      continue;
     }
-    w.centroid[k] = total->weight > 0 ? Vec3(total->sum / total->weight) : mesh.position(v);
-    w.boundary[k] = total->boundary;
-    const double area2 = total->normal.norm();
-    w.mesh_normal[k] = area2 > 0 ? Vec3(total->normal / area2) : Vec3(Vec3::Zero());
-    w.mean_edge[k] = total->edges ? total->length / total->edges : 0.0;
+    if (!added) total = &added.emplace(*total);
+    added->sum += r.sum;
+    added->normal += r.normal;
+    added->weight += r.weight;
+    added->length += r.length;
+    added->edges = static_cast<std::uint16_t>(added->edges + r.edges);
+    added->boundary |= r.boundary;
   }
+  w.centroid[k] = total->weight > 0 ? Vec3(total->sum / total->weight) : mesh.position(v);
+  w.boundary[k] = total->boundary;
+  const double area2 = total->normal.norm();
+  w.mesh_normal[k] = area2 > 0 ? Vec3(total->normal / area2) : Vec3(Vec3::Zero());
+  w.mean_edge[k] = total->edges ? total->length / total->edges : 0.0;
 }
 
 PrincipalCurvatures curvature_of(const Surface& s, const Mesh48& mesh, Vertex v) {
@@ -246,9 +257,16 @@ bool frame_reusable(const Work& w, std::size_t i, const Vec3& p, const Vec3* res
   return n.dot(c.mesh_normal) >= std::cos(kFrameReuseAngle) && !n.isZero();
 }
 
-void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingOptions& o,
-                    Work& w) {
+// The rings' sums combined and each vertex's frame (evaluated or reused), in one sweep over
+// the vertices: frame reuse reads the mesh normal and mean edge just combined, and at 10^6
+// triangles a separate sweep re-reads them from memory. Returns how Equation 1 is to read the
+// frames' curvature magnitudes (the range is the live vertices', as before).
+Weights compute_rings_and_frames(const Mesh48& mesh, const Surface& surface,
+                                 const SmoothingOptions& o, Work& w) {
+  const int chunks = sum_rings(mesh, o.scale_invariant_weights, w);
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
+  // Every live vertex's frame is written below, and no other is read: no clearing pass.
+  w.frame.resize(mesh.vertex_capacity());
   if (w.reuse && w.cached.size() < mesh.vertex_capacity()) {
     w.cached.resize(mesh.vertex_capacity());
     grow_phases(w, mesh.vertex_capacity());
@@ -263,6 +281,7 @@ void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingO
               : hi) reduction(+ : reused) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
+    combine_ring(mesh, v, chunks, w);
     if (!mesh.is_alive(v)) continue;
     const auto k = static_cast<std::size_t>(i);
     Frame& f = w.frame[k];
@@ -281,23 +300,17 @@ void compute_frames(const Mesh48& mesh, const Surface& surface, const SmoothingO
     hi = std::max({hi, f.l1, f.l2});
   }
   w.reused = reused;
-  if (o.raw_curvature) return;
-  // Normalised to [0, 1] by the mesh-wide range (the original implementation's choice).
-  const double range = hi - lo;
-  for (Frame& f : w.frame) {
-    f.l1 = range > 0 ? (f.l1 - lo) / range : 0.0;
-    f.l2 = range > 0 ? (f.l2 - lo) / range : 0.0;
-  }
+  return Weights{o.raw_curvature, lo, hi - lo};
 }
 
 // Equation 1's tangential move of one vertex (towards its ring centroid).
 Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const Vec3& centroid,
-                    const SmoothingOptions& o) {
+                    const SmoothingOptions& o, const Weights& l) {
   const double k = o.k;
   const Vec3 vec = mesh.position(v) - centroid;
   const Vec3 d = vec - vec.dot(f.k.normal) * f.k.normal;
-  return -(f.k.dir1.dot(d) * std::exp(-k * f.l1) * f.k.dir1 +
-           f.k.dir2.dot(d) * std::exp(-k * f.l2) * f.k.dir2);
+  return -(f.k.dir1.dot(d) * std::exp(-k * l(f.l1)) * f.k.dir1 +
+           f.k.dir2.dot(d) * std::exp(-k * l(f.l2)) * f.k.dir2);
 }
 
 // A face is acceptable when none of its vertices moved, or when it faces the same way as the
@@ -321,12 +334,12 @@ bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double cos_limit
 std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit_deg) {
   const double cos_limit = std::cos(limit_deg * M_PI / 180.0);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  w.bad.assign(static_cast<std::size_t>(n), 0);
+  w.bad.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
 #pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
-    if (mesh.is_alive(f))
-      w.bad[static_cast<std::size_t>(i)] = !face_acceptable(mesh, w, f, cos_limit);
+    w.bad[static_cast<std::size_t>(i)] =
+        mesh.is_alive(f) && !face_acceptable(mesh, w, f, cos_limit);
   }
   w.check.clear();
   for (std::int64_t i = 0; i < n; ++i)
@@ -353,15 +366,15 @@ std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit_deg) {
 SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const SmoothingOptions& o,
                             Work& w) {
   const std::size_t cap = mesh.vertex_capacity();
-  w.frame.assign(cap, Frame{});
-  w.position = mesh.positions();
-  w.uv = mesh.uvs();
-  w.moved.assign(cap, 0);
+  // Filled by the move loop below (each slot's old place, then its move), not copied whole
+  // first: one sweep over the vertices instead of three.
+  w.position.resize(cap);
+  w.uv.resize(cap);
+  w.moved.resize(cap);
   w.value.resize(cap);
   w.gradient.resize(cap);
   // Ring centroids first: frame reuse reads the mesh normals they sum.
-  compute_ring_centroids(mesh, o.scale_invariant_weights, w);
-  compute_frames(mesh, surface, o, w);
+  const Weights weights = compute_rings_and_frames(mesh, surface, o, w);
   ++w.calls;
   const auto* par = dynamic_cast<const ParametricSurface*>(&surface);
   const auto* imp = dynamic_cast<const ImplicitSurface*>(&surface);
@@ -374,8 +387,12 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   for (std::int64_t i = 0; i < n; ++i) {
     const Vertex v(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
+    w.moved[k] = 0;
     if (!mesh.is_alive(v)) continue;
-    Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o);
+    // Unmoved (failed, or a guard undoes it), the vertex stays where it is.
+    w.position[k] = mesh.position(v);
+    w.uv[k] = mesh.uv(v);
+    Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o, weights);
     move -= move.dot(axis) * axis;
     const bool ok = par ? parametric_move(*par, mesh, v, move, w.uv[k], w.position[k])
                         : !w.boundary[k] && implicit_move(*imp, mesh, v, move, w.position[k],
@@ -386,12 +403,16 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   r.projection_failures = failures;
   r.frames_reused = w.reused;
   r.reverted = apply_guards(mesh, w, o.min_angle_deg);
-  for (std::size_t i = 0; i < cap; ++i) {
-    if (!w.moved[i]) continue;
-    mesh.position(Vertex(static_cast<std::uint32_t>(i))) = w.position[i];
-    mesh.uv(Vertex(static_cast<std::uint32_t>(i))) = w.uv[i];
-    ++r.moved;
+  std::size_t moved = 0;
+#pragma omp parallel for schedule(static) reduction(+ : moved) if (n > kParallelMin)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!w.moved[k]) continue;
+    mesh.position(Vertex(static_cast<std::uint32_t>(i))) = w.position[k];
+    mesh.uv(Vertex(static_cast<std::uint32_t>(i))) = w.uv[k];
+    ++moved;
   }
+  r.moved = moved;
   return r;
 }
 
