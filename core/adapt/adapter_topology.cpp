@@ -504,10 +504,8 @@ void Adapter::rebuild_if_crossed() {
   const auto start = std::chrono::steady_clock::now();
   if (stats_.rebuilt) {
     constexpr std::size_t kEnough = 1000;  // enough to say how badly
-    std::vector<Face> all;
-    all.reserve(mesh_.n_faces());
-    for (const Face f : mesh_.live_faces()) all.push_back(f);
-    if (const std::size_t pairs = count_face_crossings(mesh_, all, kEnough); pairs > 0)
+    if (const std::size_t pairs = count_face_crossings(mesh_, mesh_.live_faces(), kEnough);
+        pairs > 0)
       stats_.repair_refusals.push_back(
           "the mesh re-based from F's contour in this step crosses itself (" +
           std::string(pairs >= kEnough ? "at least " : "") + std::to_string(pairs) +

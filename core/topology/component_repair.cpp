@@ -142,14 +142,8 @@ LocalRepairResult add_born_component(Mesh48& mesh, const ImplicitSurface& surfac
 LocalRepairResult remove_dead_component(Mesh48& mesh, const ImplicitSurface& surface,
                                         const Vec3& centre, const LocalRepairOptions& options) {
   if (!(options.spacing > 0.0)) return refused("death: no contour spacing");
-  std::vector<Triangle> triangles;
-  std::vector<Face> faces = mesh.live_faces();
-  for (const Face f : faces) {
-    const auto v = mesh.vertices(f);
-    triangles.push_back({v[0].idx, v[1].idx, v[2].idx});
-  }
   std::size_t count = 0;
-  const std::vector<std::uint32_t> piece = vertex_pieces(triangles, mesh.vertex_capacity(), count);
+  const std::vector<std::uint32_t> piece = vertex_pieces(mesh, count);
   Vertex nearest;
   double best = HUGE_VAL;
   for (const Vertex v : mesh.live_vertices()) {
@@ -164,8 +158,8 @@ LocalRepairResult remove_dead_component(Mesh48& mesh, const ImplicitSurface& sur
       return refused("death: the component nearest the event reaches past the repair's radius");
     extent.extend(mesh.position(v));
   }
-  // Gone means F has one sign over the component's box (grown by a quarter, at most half the
-  // repair's spacing between nodes): no zero set left there to mesh.
+  // Gone means F has one sign over the component's box (grown by a quarter and by half the
+  // repair's spacing), sampled at half that spacing: no zero set left there to mesh.
   const Vec3 grow = 0.25 * extent.size() + Vec3::Constant(0.5 * options.spacing);
   ContourGrid grid;
   grid.box.extend(extent.min - grow);
@@ -176,8 +170,8 @@ LocalRepairResult remove_dead_component(Mesh48& mesh, const ImplicitSurface& sur
   if (*lo < 0.0 && *hi > 0.0)
     return refused("death: F still crosses zero where the dying component is");
   std::vector<Face> removed;
-  for (std::size_t k = 0; k < faces.size(); ++k)
-    if (piece[triangles[k][0]] == piece[nearest.idx]) removed.push_back(faces[k]);
+  for (const Face f : mesh.live_faces())
+    if (piece[mesh.vertex(f, 0).idx] == piece[nearest.idx]) removed.push_back(f);
   mesh.replace_region(removed, {}, {}, {});
   LocalRepairResult r;
   r.repaired = true;

@@ -120,14 +120,22 @@ std::vector<std::uint32_t> vertex_pieces(const std::vector<std::array<std::uint3
   return piece;
 }
 
-MeshTopologySummary summarize_topology(const Mesh48& mesh) {
+std::vector<std::array<std::uint32_t, 3>> live_triangles(const Mesh48& mesh) {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   triangles.reserve(mesh.n_faces());
   for (const Face f : mesh.live_faces()) {
     const auto v = mesh.vertices(f);
     triangles.push_back({v[0].idx, v[1].idx, v[2].idx});
   }
-  return summarize_topology(triangles, mesh.vertex_capacity());
+  return triangles;
+}
+
+MeshTopologySummary summarize_topology(const Mesh48& mesh) {
+  return summarize_topology(live_triangles(mesh), mesh.vertex_capacity());
+}
+
+std::vector<std::uint32_t> vertex_pieces(const Mesh48& mesh, std::size_t& count) {
+  return vertex_pieces(live_triangles(mesh), mesh.vertex_capacity(), count);
 }
 
 TopologyMonitor::TopologyMonitor(const ContourBaseOptions& grid, double resolution)

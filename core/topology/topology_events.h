@@ -55,6 +55,10 @@ MeshTopologySummary summarize_topology(const std::vector<std::array<std::uint32_
 // 0 ... count - 1 in the order of their lowest vertex (a vertex in no triangle is a piece).
 std::vector<std::uint32_t> vertex_pieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                          std::size_t vertex_count, std::size_t& count);
+// The same for a mesh's live faces, over its vertex slots (dead ones are pieces of their own).
+std::vector<std::uint32_t> vertex_pieces(const Mesh48& mesh, std::size_t& count);
+// A mesh's live faces as vertex id triples, in Mesh48::live_faces() order.
+std::vector<std::array<std::uint32_t, 3>> live_triangles(const Mesh48& mesh);
 
 struct TopologyCheck {
   std::vector<TopologyEvent> events;
