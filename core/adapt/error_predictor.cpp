@@ -61,6 +61,18 @@ Change change(const float (&now)[3][3], const float (&then)[3][3]) {
   return out;
 }
 
+// The residual along an edge, r(t) = t (1 - t) (c + d (2 t - 1)), with the slopes r'(0) =
+// start and r'(1) = end at its ends: c and d from those slopes (a vector for parametric
+// surfaces, the scalar first component for implicit ones; the same operations either way).
+template <class T>
+T quadratic_part(const T& start, const T& end) {
+  return 0.5 * (start - end);
+}
+template <class T>
+T cubic_part(const T& start, const T& end) {
+  return -0.5 * (start + end);
+}
+
 // The largest change over the triangle of the residual's quadratic part, sum_e b_i b_j dc_e,
 // where the residual is a vector (parametric): with the maxima of sum b_i b_j (1/3) and of
 // b_i b_j (1/4). Where it is scalar (implicit) select() takes its exact maximum
@@ -189,8 +201,7 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
       start = Vec3(edge.dot(fi.a), 0.0, 0.0);
       end = Vec3(edge.dot(fj.a), 0.0, 0.0);
     }
-    // r(t) = t (1 - t) (c + d (2 t - 1)) has exactly these slopes.
-    const Vec3 c = 0.5 * (start - end), d = -0.5 * (start + end);
+    const Vec3 c = quadratic_part(start, end), d = cubic_part(start, end);
     out.length[e] = static_cast<float>(edge.norm());
     for (int k = 0; k < 3; ++k) {
       out.c[e][k] = static_cast<float>(c[k]);
@@ -273,9 +284,9 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
         Change cubic;
         if (implicit) {
           // The residual is scalar: only each edge's first components (c, d) and its length
-          // enter, computed with coefficients()'s own operations (the same floats; the length is
-          // the chord), without filling the zeros. The
-          // cubic change is change()'s to the bit: the norm of (x, 0, 0) is sqrt(x * x), which is
+          // enter, computed as coefficients() computes them (quadratic_part, cubic_part: the
+          // same floats; the length is the chord), without filling the zeros. The cubic change is
+          // change()'s to the bit: the norm of (x, 0, 0) is sqrt(x * x), which is
           // |x| exactly (x, a difference of two floats, neither underflows nor overflows when
           // squared in double).
           const Coefficients& then = reference_[k];
@@ -285,9 +296,10 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
           for (int e = 0; e < 3; ++e) {
             const double start = edge[e].dot(frame_[v[(e + 1) % 3].idx].a);
             const double end = edge[e].dot(frame_[v[(e + 2) % 3].idx].a);
-            x[e] = static_cast<double>(static_cast<float>(0.5 * (start - end))) - then.c[e][0];
+            x[e] =
+                static_cast<double>(static_cast<float>(quadratic_part(start, end))) - then.c[e][0];
             const double d = std::abs(
-                static_cast<double>(static_cast<float>(-0.5 * (start + end))) - then.d[e][0]);
+                static_cast<double>(static_cast<float>(cubic_part(start, end))) - then.d[e][0]);
             cubic.largest = std::max(cubic.largest, d);
             cubic.sum += d;
             length[e] = static_cast<float>(chord[e]);
