@@ -143,6 +143,9 @@ class Adapter {
   // rebuilds the mesh from F's contour (a global re-base: no vertex survives it).
   void watch_topology();
   void check_topology();
+  // The monitor's critical points near F = 0, where the error is measured by Newton's method
+  // (SurfaceProbe::set_singular_points).
+  void note_singular_points();
   // True when the local repairs leave the mesh with F's topology (TopologyCheck); why not is
   // added to the step's repair_refusals.
   bool repair_topology_locally(const TopologyCheck& check);

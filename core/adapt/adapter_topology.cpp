@@ -55,6 +55,7 @@ void Adapter::check_topology() {
   stats_.topology_events.insert(stats_.topology_events.end(), check.events.begin(),
                                 check.events.end());
   stats_.topology_seconds += check.seconds;
+  note_singular_points();
   if (!check.rebase) return;
   // Locally first; when that cannot be done the whole mesh is rebuilt from F's contour at this
   // time (a global re-base), which the split pass then refines like a first mesh.
@@ -84,6 +85,23 @@ void Adapter::check_topology() {
   topology_->mesh_rebuilt(mesh_);
   stats_.topology_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Adapter::note_singular_points() {
+  // A distance field's layer (fixed critical points) is left as it was: its critical points
+  // are many, and |grad D| = 1 almost everywhere makes its first-order distance exact.
+  std::vector<Vec3> points;
+  if (!topology_->fixed_points()) {
+    for (const CriticalPoint& c : topology_->critical_points()) {
+      if (!(c.curvature > 0.0)) continue;
+      // The level set F = 0 passes within this of the point (a neck's or a gap's half width).
+      const double waist = std::sqrt(2.0 * std::abs(c.value) / c.curvature);
+      // Wider than the watching grid's cells, it bends no more sharply than the faces there,
+      // finer than those cells, already follow.
+      if (waist < 2.0 * topology_->spacing()) points.push_back(c.position);
+    }
+  }
+  probe_.set_singular_points(points);
 }
 
 bool Adapter::repair_topology_locally(const TopologyCheck& check) {

@@ -168,7 +168,12 @@ double SurfaceProbe::signed_distance(const Vec3& x) const {
   const double f = implicit_->value_gradient(x, g);
   const double gnorm = g.norm();
   const double first_order = f / gnorm;
-  if (gnorm > 0 && std::abs(first_order) < first_order_limit_) return first_order;
+  if (gnorm > 0 && std::abs(first_order) < first_order_limit_) {
+    const double reach2 = kFirstOrderReach * kFirstOrderReach * first_order * first_order;
+    bool near = false;
+    for (const Vec3& c : singular_) near = near || (x - c).squaredNorm() < reach2;
+    if (!near) return first_order;
+  }
   return std::copysign(distance_to_surface(*implicit_, x), f);
 }
 

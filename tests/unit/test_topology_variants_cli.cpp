@@ -464,5 +464,35 @@ TEST(TopologyVariantsCli, HoleOpensThroughAMembrane) {
   run_and_judge(v);
 }
 
+// Frames within 0.001 of an event (session 16's sweep of 24 random variants in 40 steps: 4
+// failed). Next to the critical point the first-order distance |F| / |grad F| read the error
+// 0.9985 (T + eps) where the Newton distance is 1.155 (the tip of a blob 0.0007 before it
+// merged), so the faces there were left too coarse; the probe now takes Newton's distance near
+// F's critical points close to F = 0 (SurfaceProbe::set_singular_points).
+TEST(TopologyVariantsCli, BlobsFramedJustBeforeTheyMerge) {
+  run_and_judge(blobs("merge-near-frame", Vec3(-0.708621, 0.645387, -0.285188),
+                      Vec3(0.003062, 0.080908, -0.043990), 0.158259, 0.350713, 0.584894,
+                      "-1.591133,-1.454126,-1.242018,1.597257,1.615941,1.154039", 40));
+}
+
+// A thinner torus (R = 1.044, r = 0.261) pinched by a narrower bump (width^2 0.104) at 134
+// degrees, 0.0009 after a frame: that frame read 1.115 (T + eps) densely, and the step before
+// it had left 11 faces folded and the mesh was rebuilt, twice (survival 0.950).
+TEST(TopologyVariantsCli, ThinTorusPinchedJustAfterAFrame) {
+  Variant v;
+  v.name = "thin-torus-near-frame";
+  v.formula =
+      "(sqrt(x^2+y^2)-1.044114)^2 + z^2 - 0.067920 + "
+      "0.180698*t*exp(-((x+0.721968)^2+(y-0.754279)^2+z^2)/0.103735)";
+  v.bounds = "-1.604729,-1.604729,-0.460615,1.604729,1.604729,0.460615";
+  v.steps = 40;
+  v.max_rebuilds = 0;
+  v.events = {{0.067920 / 0.180698, "split"}};
+  v.topology = [](double t, const std::vector<double>& times) {
+    return t < times[0] ? std::pair<long, long>{1, 0} : std::pair<long, long>{1, 2};
+  };
+  run_and_judge(v);
+}
+
 }  // namespace
 }  // namespace dynamesh
