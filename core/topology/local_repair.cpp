@@ -382,9 +382,9 @@ struct Patch {
   std::vector<Loop> loops;
 };
 
-// F's contour on a grid of `h` with a grid point on `centre`, reaching `reach` from it: the
-// triangles whose every corner is `inside`; empty loops and triangles when its border is
-// pinched.
+// F's contour (F = the level `level_rule` gives, if any: LocalRepairOptions::contour_level) on
+// a grid of `h` with a grid point on `centre`, reaching `reach` from it: the triangles whose
+// every corner is `inside`; empty loops and triangles when its border is pinched.
 int patch_grid_half_cells(double reach, double h) {
   return static_cast<int>(std::ceil((reach + h) / h));
 }
@@ -393,20 +393,27 @@ std::size_t patch_grid_cells(double reach, double h) {
   return side * side * side;
 }
 
+using ContourLevel = std::function<double(const Box3&, double)>;
+
 template <class Inside>
 Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double reach, double h,
-                    const Inside& inside_hole) {
+                    const Inside& inside_hole, const ContourLevel& level_rule) {
   const int n = patch_grid_half_cells(reach, h);
   ContourGrid grid;
   grid.box.min = centre - Vec3::Constant(n * h);
   grid.box.max = centre + Vec3::Constant(n * h);
   grid.cells = {2 * n, 2 * n, 2 * n};
+  const double level = level_rule ? level_rule(grid.box, std::sqrt(3.0) * h) : 0.0;
   constexpr double kMargin = 0.05;
   // F zero to within rounding at a grid point counts as outside, as the event monitor counts a
   // critical point (topology_events.cpp): at an event on a step time the point on the event is
   // the double cone's tip, and the rounding of F there must not keep a neck the monitor
-  // reported gone (the torus pinched at t = 0.75).
+  // reported gone (the torus pinched at t = 0.75). That alone is not enough: the grid's points
+  // beside the tip lie within its resolution of zero too, on either side (the torus pinched
+  // at 135 degrees, t = 0.3: inside, and joined past the tip by the grid's face diagonals), so
+  // a caller that knows F's critical points moves the level off zero there.
   std::vector<double> values = sample_grid(surface, grid);
+  for (double& v : values) v -= level;
   double largest = 0;
   for (const double v : values) largest = std::max(largest, std::abs(v));
   for (double& v : values)
@@ -416,7 +423,7 @@ Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double r
   std::vector<std::int64_t> index(contour.positions.size(), -1);
   std::vector<Vec3> placed(contour.positions.size());
   for (std::size_t v = 0; v < placed.size(); ++v)
-    placed[v] = root_on_edge(surface, contour.edges[v], kMargin);
+    placed[v] = root_on_edge(surface, contour.edges[v], kMargin, level);
   for (const Triangle& t : contour.triangles) {
     bool inside = true;
     for (const std::uint32_t v : t) inside = inside && inside_hole(placed[v]);
@@ -713,9 +720,9 @@ struct RepairPlan {
 // One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam), on
 // a copy of `original`: when it succeeds, `plan` says what to do to the mesh.
 LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface,
-                          const SplitPlacement& place, const Vec3& centre, double r, double h,
-                          double max_h, bool islands, bool raise, bool refine,
-                          std::size_t grid_cells_left, RepairPlan& plan) {
+                          const SplitPlacement& place, const ContourLevel& level,
+                          const Vec3& centre, double r, double h, double max_h, bool islands,
+                          bool raise, bool refine, std::size_t grid_cells_left, RepairPlan& plan) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -824,7 +831,7 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   const std::size_t cells = patch_grid_cells(keep, h);
   if (cells > grid_cells_left) return refuse(kBudgetSpent);
   result.grid_cells = cells;
-  const Patch patch = contour_patch(surface, centre, keep, h, in_hole);
+  const Patch patch = contour_patch(surface, centre, keep, h, in_hole, level);
   if (patch.loops.size() != mesh_loops.size())
     return refuse("the contour near the event has " + std::to_string(patch.loops.size()) +
                   " border loops, the cut " + std::to_string(mesh_loops.size()));
@@ -1110,9 +1117,9 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
             if (spent) break;
             RepairPlan plan;
             const LocalRepairResult r =
-                attempt(mesh, surface, options.place_split_vertex, centre, grow * options.radius,
-                        finer * h, finer * most, ladder.islands, mode == 1, mode == 2,
-                        options.max_grid_cells - cells_used, plan);
+                attempt(mesh, surface, options.place_split_vertex, options.contour_level, centre,
+                        grow * options.radius, finer * h, finer * most, ladder.islands, mode == 1,
+                        mode == 2, options.max_grid_cells - cells_used, plan);
             cells_used += r.grid_cells;
             if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
             spent = r.why_not == kBudgetSpent;
