@@ -1091,8 +1091,11 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // leave the cut more border loops than the contour, but cutting them where another cut
   // would do changes which attempt is taken (the blobs along x in 20 steps then folded after
   // the merge), so only where no cut without them would do.
-  std::size_t cells_used = 0;
-  bool spent = false;
+  // All of it with F = 0 contoured first, then, where none would do, again with F = L off zero
+  // (LocalRepairOptions::contour_level), if a critical point near the event asks for a level
+  // at all (the coarsest grid asks for the largest): a repair F = 0 serves is made as before.
+  // Contoured at a level, a new neck is wider than F's (the three blobs in a row, merged 0.0005
+  // before a frame: the correction then thinned it, and the repaired region crossed the mesh).
   std::vector<double> coarsest;
   for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
     coarsest.push_back(most);
@@ -1103,37 +1106,49 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   };
   const Ladder ladders[3] = {
       {{1.0, 0.75}, false}, {{0.5, 0.35, 0.25}, false}, {{1.0, 0.75, 0.5, 0.35, 0.25}, true}};
-  for (const Ladder& ladder : ladders)
-    for (const double grow : {1.0, 1.25, 1.5})
-      for (const double finer : ladder.finer)
-        for (const double most : coarsest) {
-          if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
-          if (spent) break;
-          // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
-          // split), unless levelling up would split nothing; then made after the faces near the
-          // event are split finer than the cut (refine_near), unless none is coarse: last, so
-          // that where the first two serve (the analytic scenes) nothing changes.
-          for (const int mode : {0, 1, 2}) {
+  const double widest = coarsest.front();
+  const double reach = 1.5 * options.radius + 2.0 * widest;
+  const bool off_zero =
+      options.contour_level &&
+      options.contour_level({centre - Vec3::Constant(reach), centre + Vec3::Constant(reach)},
+                            std::sqrt(3.0) * widest) != 0.0;
+  const ContourLevel levels[2] = {ContourLevel{}, options.contour_level};
+  for (int pass = 0; pass < (off_zero ? 2 : 1); ++pass) {
+    const ContourLevel& level = levels[pass];
+    std::size_t cells_used = 0;  // the work bound holds for each pass
+    bool spent = false;
+    for (const Ladder& ladder : ladders)
+      for (const double grow : {1.0, 1.25, 1.5})
+        for (const double finer : ladder.finer)
+          for (const double most : coarsest) {
+            if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
             if (spent) break;
-            RepairPlan plan;
-            const LocalRepairResult r =
-                attempt(mesh, surface, options.place_split_vertex, options.contour_level, centre,
-                        grow * options.radius, finer * h, finer * most, ladder.islands, mode == 1,
-                        mode == 2, options.max_grid_cells - cells_used, plan);
-            cells_used += r.grid_cells;
-            if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
-            spent = r.why_not == kBudgetSpent;
-            if (r.why_not == kNothingToRaise || r.why_not == kNothingToRefine) continue;
-            last = r;
-            const auto seen = std::find_if(reasons.begin(), reasons.end(), [&](const auto& reason) {
-              return reason.first == last.why_not;
-            });
-            if (seen == reasons.end())
-              reasons.emplace_back(last.why_not, 1);
-            else
-              ++seen->second;
+            // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
+            // split), unless levelling up would split nothing; then made after the faces near the
+            // event are split finer than the cut (refine_near), unless none is coarse: last, so
+            // that where the first two serve (the analytic scenes) nothing changes.
+            for (const int mode : {0, 1, 2}) {
+              if (spent) break;
+              RepairPlan plan;
+              const LocalRepairResult r =
+                  attempt(mesh, surface, options.place_split_vertex, level, centre,
+                          grow * options.radius, finer * h, finer * most, ladder.islands, mode == 1,
+                          mode == 2, options.max_grid_cells - cells_used, plan);
+              cells_used += r.grid_cells;
+              if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
+              spent = r.why_not == kBudgetSpent;
+              if (r.why_not == kNothingToRaise || r.why_not == kNothingToRefine) continue;
+              last = r;
+              const auto seen =
+                  std::find_if(reasons.begin(), reasons.end(),
+                               [&](const auto& reason) { return reason.first == last.why_not; });
+              if (seen == reasons.end())
+                reasons.emplace_back(last.why_not, 1);
+              else
+                ++seen->second;
+            }
           }
-        }
+  }
   std::string why;
   for (const auto& [reason, attempts] : reasons)
     why += (why.empty() ? "" : "; ") + reason +

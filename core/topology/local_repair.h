@@ -44,8 +44,9 @@ struct LocalRepairOptions {
   // them for T there) between `spacing` and this, so the new faces are no finer than the
   // faces around them and the queues re-adapt the region both ways.
   double max_spacing = 0.0;
-  // The work bound: the cells of the patches' contour grids, summed over the attempts (each
-  // costs one evaluation of F per grid point). An attempt that would pass it is not made. The
+  // The work bound: the cells of the patches' contour grids, summed over the attempts at one
+  // level (each costs one evaluation of F per grid point). An attempt that would pass it is not
+  // made. The
   // analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at most
   // (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
   std::size_t max_grid_cells = std::size_t{1} << 22;
@@ -64,7 +65,8 @@ struct LocalRepairOptions {
   // at an event's instant F's critical point is zero to within rounding and the patch's grid,
   // which has a point on it, cannot resolve its side: a caller that knows F's critical points
   // gives L off zero just far enough that each in the box keeps its side
-  // (TopologyMonitor::clear_level).
+  // (TopologyMonitor::clear_level). The attempts at F = L follow those at F = 0, where none of
+  // those would do and L is not 0 near the event.
   std::function<double(const Box3& box, double diagonal)> contour_level;
 };
 
