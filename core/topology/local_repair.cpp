@@ -382,9 +382,9 @@ struct Patch {
   std::vector<Loop> loops;
 };
 
-// F's contour on a grid of `h` with a grid point on `centre`, reaching `reach` from it: the
-// triangles whose every corner is `inside`; empty loops and triangles when its border is
-// pinched.
+// F's contour (F = the level `level_rule` gives, if any: LocalRepairOptions::contour_level) on
+// a grid of `h` with a grid point on `centre`, reaching `reach` from it: the triangles whose
+// every corner is `inside`; empty loops and triangles when its border is pinched.
 int patch_grid_half_cells(double reach, double h) {
   return static_cast<int>(std::ceil((reach + h) / h));
 }
@@ -393,20 +393,27 @@ std::size_t patch_grid_cells(double reach, double h) {
   return side * side * side;
 }
 
+using ContourLevel = std::function<double(const Box3&, double)>;
+
 template <class Inside>
 Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double reach, double h,
-                    const Inside& inside_hole) {
+                    const Inside& inside_hole, const ContourLevel& level_rule) {
   const int n = patch_grid_half_cells(reach, h);
   ContourGrid grid;
   grid.box.min = centre - Vec3::Constant(n * h);
   grid.box.max = centre + Vec3::Constant(n * h);
   grid.cells = {2 * n, 2 * n, 2 * n};
+  const double level = level_rule ? level_rule(grid.box, std::sqrt(3.0) * h) : 0.0;
   constexpr double kMargin = 0.05;
   // F zero to within rounding at a grid point counts as outside, as the event monitor counts a
   // critical point (topology_events.cpp): at an event on a step time the point on the event is
   // the double cone's tip, and the rounding of F there must not keep a neck the monitor
-  // reported gone (the torus pinched at t = 0.75).
+  // reported gone (the torus pinched at t = 0.75). That alone is not enough: the grid's points
+  // beside the tip lie within its resolution of zero too, on either side (the torus pinched
+  // at 135 degrees, t = 0.3: inside, and joined past the tip by the grid's face diagonals), so
+  // a caller that knows F's critical points moves the level off zero there.
   std::vector<double> values = sample_grid(surface, grid);
+  for (double& v : values) v -= level;
   double largest = 0;
   for (const double v : values) largest = std::max(largest, std::abs(v));
   for (double& v : values)
@@ -416,7 +423,7 @@ Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double r
   std::vector<std::int64_t> index(contour.positions.size(), -1);
   std::vector<Vec3> placed(contour.positions.size());
   for (std::size_t v = 0; v < placed.size(); ++v)
-    placed[v] = root_on_edge(surface, contour.edges[v], kMargin);
+    placed[v] = root_on_edge(surface, contour.edges[v], kMargin, level);
   for (const Triangle& t : contour.triangles) {
     bool inside = true;
     for (const std::uint32_t v : t) inside = inside && inside_hole(placed[v]);
@@ -713,9 +720,9 @@ struct RepairPlan {
 // One attempt at cut radius r, patch spacing h (or coarser, up to max_h, to match the seam), on
 // a copy of `original`: when it succeeds, `plan` says what to do to the mesh.
 LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface,
-                          const SplitPlacement& place, const Vec3& centre, double r, double h,
-                          double max_h, bool islands, bool raise, bool refine,
-                          std::size_t grid_cells_left, RepairPlan& plan) {
+                          const SplitPlacement& place, const ContourLevel& level,
+                          const Vec3& centre, double r, double h, double max_h, bool islands,
+                          bool raise, bool refine, std::size_t grid_cells_left, RepairPlan& plan) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -824,7 +831,7 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
   const std::size_t cells = patch_grid_cells(keep, h);
   if (cells > grid_cells_left) return refuse(kBudgetSpent);
   result.grid_cells = cells;
-  const Patch patch = contour_patch(surface, centre, keep, h, in_hole);
+  const Patch patch = contour_patch(surface, centre, keep, h, in_hole, level);
   if (patch.loops.size() != mesh_loops.size())
     return refuse("the contour near the event has " + std::to_string(patch.loops.size()) +
                   " border loops, the cut " + std::to_string(mesh_loops.size()));
@@ -1084,8 +1091,11 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   // leave the cut more border loops than the contour, but cutting them where another cut
   // would do changes which attempt is taken (the blobs along x in 20 steps then folded after
   // the merge), so only where no cut without them would do.
-  std::size_t cells_used = 0;
-  bool spent = false;
+  // All of it with F = 0 contoured first, then, where none would do, again with F = L off zero
+  // (LocalRepairOptions::contour_level), if a critical point near the event asks for a level
+  // at all (the coarsest grid asks for the largest): a repair F = 0 serves is made as before.
+  // Contoured at a level, a new neck is wider than F's (the three blobs in a row, merged 0.0005
+  // before a frame: the correction then thinned it, and the repaired region crossed the mesh).
   std::vector<double> coarsest;
   for (double most = std::max(h, options.max_spacing); most > h * 1.0001; most *= 0.85)
     coarsest.push_back(most);
@@ -1096,37 +1106,49 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
   };
   const Ladder ladders[3] = {
       {{1.0, 0.75}, false}, {{0.5, 0.35, 0.25}, false}, {{1.0, 0.75, 0.5, 0.35, 0.25}, true}};
-  for (const Ladder& ladder : ladders)
-    for (const double grow : {1.0, 1.25, 1.5})
-      for (const double finer : ladder.finer)
-        for (const double most : coarsest) {
-          if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
-          if (spent) break;
-          // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
-          // split), unless levelling up would split nothing; then made after the faces near the
-          // event are split finer than the cut (refine_near), unless none is coarse: last, so
-          // that where the first two serve (the analytic scenes) nothing changes.
-          for (const int mode : {0, 1, 2}) {
+  const double widest = coarsest.front();
+  const double reach = 1.5 * options.radius + 2.0 * widest;
+  const bool off_zero =
+      options.contour_level &&
+      options.contour_level({centre - Vec3::Constant(reach), centre + Vec3::Constant(reach)},
+                            std::sqrt(3.0) * widest) != 0.0;
+  const ContourLevel levels[2] = {ContourLevel{}, options.contour_level};
+  for (int pass = 0; pass < (off_zero ? 2 : 1); ++pass) {
+    const ContourLevel& level = levels[pass];
+    std::size_t cells_used = 0;  // the work bound holds for each pass
+    bool spent = false;
+    for (const Ladder& ladder : ladders)
+      for (const double grow : {1.0, 1.25, 1.5})
+        for (const double finer : ladder.finer)
+          for (const double most : coarsest) {
+            if (finer < 1.0 && most > h) continue;  // the finer grids only at the finest spacing
             if (spent) break;
-            RepairPlan plan;
-            const LocalRepairResult r =
-                attempt(mesh, surface, options.place_split_vertex, centre, grow * options.radius,
-                        finer * h, finer * most, ladder.islands, mode == 1, mode == 2,
-                        options.max_grid_cells - cells_used, plan);
-            cells_used += r.grid_cells;
-            if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
-            spent = r.why_not == kBudgetSpent;
-            if (r.why_not == kNothingToRaise || r.why_not == kNothingToRefine) continue;
-            last = r;
-            const auto seen = std::find_if(reasons.begin(), reasons.end(), [&](const auto& reason) {
-              return reason.first == last.why_not;
-            });
-            if (seen == reasons.end())
-              reasons.emplace_back(last.why_not, 1);
-            else
-              ++seen->second;
+            // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
+            // split), unless levelling up would split nothing; then made after the faces near the
+            // event are split finer than the cut (refine_near), unless none is coarse: last, so
+            // that where the first two serve (the analytic scenes) nothing changes.
+            for (const int mode : {0, 1, 2}) {
+              if (spent) break;
+              RepairPlan plan;
+              const LocalRepairResult r =
+                  attempt(mesh, surface, options.place_split_vertex, level, centre,
+                          grow * options.radius, finer * h, finer * most, ladder.islands, mode == 1,
+                          mode == 2, options.max_grid_cells - cells_used, plan);
+              cells_used += r.grid_cells;
+              if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
+              spent = r.why_not == kBudgetSpent;
+              if (r.why_not == kNothingToRaise || r.why_not == kNothingToRefine) continue;
+              last = r;
+              const auto seen =
+                  std::find_if(reasons.begin(), reasons.end(),
+                               [&](const auto& reason) { return reason.first == last.why_not; });
+              if (seen == reasons.end())
+                reasons.emplace_back(last.why_not, 1);
+              else
+                ++seen->second;
+            }
           }
-        }
+  }
   std::string why;
   for (const auto& [reason, attempts] : reasons)
     why += (why.empty() ? "" : "; ") + reason +

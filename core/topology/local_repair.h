@@ -17,7 +17,7 @@
 //  2. Patch: marching tetrahedra of F on a grid of `spacing` around the event (a grid point on
 //     the event itself, so that a neck thinner than the grid is not missed), the triangles
 //     with all corners within radius - spacing / 2, their corners on F (root on their grid
-//     edge, then Newton).
+//     edge, then Newton). At an event's instant, F = L off zero (contour_level).
 //  3. Stitch: each border loop is zipped to the patch loop nearest to it (centroids) by a
 //     strip of triangles, the shorter rung first (the classic contour-stitching greedy).
 //  4. Pair: a perfect matching of the new triangles (triangle_pairing.h); each pair's shared
@@ -44,8 +44,9 @@ struct LocalRepairOptions {
   // them for T there) between `spacing` and this, so the new faces are no finer than the
   // faces around them and the queues re-adapt the region both ways.
   double max_spacing = 0.0;
-  // The work bound: the cells of the patches' contour grids, summed over the attempts (each
-  // costs one evaluation of F per grid point). An attempt that would pass it is not made. The
+  // The work bound: the cells of the patches' contour grids, summed over the attempts at one
+  // level (each costs one evaluation of F per grid point). An attempt that would pass it is not
+  // made. The
   // analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at most
   // (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
   std::size_t max_grid_cells = std::size_t{1} << 22;
@@ -59,6 +60,14 @@ struct LocalRepairOptions {
   // split_point_on_surface, and the repair puts the replayed vertices there itself (a mesh
   // nobody listens to).
   std::function<void(Mesh48&, const DiamondChange&)> place_split_vertex;
+  // The level L of the patch's contour, F = L, on a grid over `box` of cell diagonal
+  // `diagonal` (its vertices then projected onto F = 0, as far as they may go). Empty: 0. Right
+  // at an event's instant F's critical point is zero to within rounding and the patch's grid,
+  // which has a point on it, cannot resolve its side: a caller that knows F's critical points
+  // gives L off zero just far enough that each in the box keeps its side
+  // (TopologyMonitor::clear_level). The attempts at F = L follow those at F = 0, where none of
+  // those would do and L is not 0 near the event.
+  std::function<double(const Box3& box, double diagonal)> contour_level;
 };
 
 struct LocalRepairResult {

@@ -170,11 +170,15 @@ void TopologyMonitor::reset(const ImplicitSurface& surface, const Mesh48& mesh) 
   previous_ = find_critical_points(surface, grid, sample_field(surface, grid), HUGE_VAL);
 }
 
-std::optional<double> TopologyMonitor::clear_level(double diagonal, double fraction) const {
+std::optional<double> TopologyMonitor::clear_level(double diagonal, double fraction,
+                                                   const Box3* within) const {
   // F - L >= margin where the point is outside (as check() counts sides), F - L <= -margin
   // where it is inside.
   double lo = -HUGE_VAL, hi = HUGE_VAL;
   for (const CriticalPoint& cp : previous_) {
+    if (within && ((cp.position.array() < within->min.array()).any() ||
+                   (cp.position.array() > within->max.array()).any()))
+      continue;
     const double margin = fraction * 0.5 * cp.curvature * diagonal * diagonal;
     if (inside(cp, diagonal_))
       lo = std::max(lo, cp.value + margin);

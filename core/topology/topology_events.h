@@ -95,7 +95,9 @@ class TopologyMonitor {
   // of the sign of F, by at least `fraction` of the bound within which that grid's
   // piecewise-linear contour may be wrong about it (|Hess F| diagonal^2 / 2). The L nearest 0;
   // none when two critical points ask for opposite sides.
-  std::optional<double> clear_level(double diagonal, double fraction) const;
+  // Only the critical points within `within`, when given (a local patch's grid).
+  std::optional<double> clear_level(double diagonal, double fraction,
+                                    const Box3* within = nullptr) const;
 
  private:
   ContourGrid grid_for(const ImplicitSurface& surface) const;
