@@ -371,7 +371,9 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
   std::optional<Mesh48> before;
   if (topology_->fixed_points()) before.emplace(mesh_);
   changed = false;
-  const auto give_up = [&] {
+  // Every way of giving up says why (a re-base follows, and its reason was not in the stats).
+  const auto give_up = [&](const std::string& why) {
+    stats_.repair_refusals.push_back("folds not re-meshed locally: " + why);
     changed = !centres.empty();  // patches made (and undone on a layer: samples redrawn)
     if (before && !centres.empty()) {
       mesh_ = std::move(*before);
@@ -382,9 +384,12 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
   for (int patch = 0;; ++patch) {
     find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, folded, slivers);
     if (folded.empty()) break;
-    if (patch == kMostPatches) return give_up();
+    if (patch == kMostPatches)
+      return give_up(std::to_string(folded.size()) + " face(s) still folded after " +
+                     std::to_string(kMostPatches) + " patches");
     const std::optional<Vec3> cluster = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
-    if (!cluster) return give_up();
+    if (!cluster)
+      return give_up(std::to_string(folded.size()) + " folded faces spread wider than a patch");
     const Vec3 centre =
         nearest_saddle(topology_->critical_points(), *cluster, 0.5 * o.radius).value_or(*cluster);
     LocalRepairOptions here = o;
@@ -408,28 +413,27 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
       LocalRepairResult w = repair_locally(mesh_, implicit, centre, narrower);
       if (w.repaired) r = std::move(w);
     }
-    if (!r.repaired) {
-      stats_.repair_refusals.push_back("folds not re-meshed locally: " + r.why_not);
-      return give_up();
-    }
+    if (!r.repaired) return give_up(r.why_not);
     adopt_repair(r.new_vertices);
+    if (options_.fold_repair.enabled) repair(options_.fold_repair);
     born.insert(born.end(), r.new_vertices.begin(), r.new_vertices.end());
     centres.push_back(centre);
     removed += r.removed_faces;
     spacing = std::max(spacing, r.spacing);
   }
-  if (centres.empty()) return give_up();
-  if (!(summarize_topology(mesh_) == topology)) return give_up();  // the re-base follows
+  if (centres.empty()) return give_up("the screen finds no folded face");
+  if (const MeshTopologySummary now = summarize_topology(mesh_); !(now == topology))
+    return give_up("the patches changed the topology (Euler characteristic " +
+                   std::to_string(now.euler) + ", " + std::to_string(now.components) +
+                   " component(s), against " + std::to_string(topology.euler) + ", " +
+                   std::to_string(topology.components) + ")");
   // Nor may the new faces pass through the mesh's other sheet across the neck (the wide blobs
   // in 20 steps: 111 crossing pairs in the frame before the split, every face facing up).
   std::vector<Face> around;
   for (const Vertex v : born)  // a later patch may have cut out an earlier one's vertices
     if (mesh_.is_alive(v))
       mesh_.for_each_corner_around(v, [&](Corner c) { around.push_back(c.face); });
-  if (count_face_crossings(mesh_, around) > 0) {
-    stats_.repair_refusals.push_back("folds not re-meshed locally: the new faces cross the mesh");
-    return give_up();
-  }
+  if (count_face_crossings(mesh_, around) > 0) return give_up("the new faces cross the mesh");
   changed = true;
   repair_centres_.insert(repair_centres_.end(), centres.begin(), centres.end());
   stats_.folds_remeshed += stats_.folds_left;
