@@ -361,6 +361,15 @@ TEST(TopologyVariantsCli, TorusPinchedOnAFrameAt135Degrees) {
   run_and_judge(v);
 }
 
+// The same pinch 0.00005 before that frame (c = 0.30005): repaired locally, but the frame just
+// after it read 1.17 (T + eps) densely at the new tips until the error there was taken as
+// Newton's distance (SurfaceProbe::set_singular_points); main rebuilt the mesh (survival 0.897).
+TEST(TopologyVariantsCli, TorusPinchedJustBeforeAFrameAt135Degrees) {
+  Variant v = torus_pinch("torus-135deg-10-early", 3 * M_PI / 4, 0.30005, 10);
+  v.max_rebuilds = 0;
+  run_and_judge(v);
+}
+
 // One event of `kind` at `time`, with `before` and `after` it as (components, Euler
 // characteristic), on an F of one's own, 20 steps.
 template <long C0, long E0, long C1, long E1>
