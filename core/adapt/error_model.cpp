@@ -112,14 +112,20 @@ EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quar
       const double magnitude =
           std::abs(x) > 1e-150 && std::abs(x) < 1e150 ? std::abs(x) : std::sqrt(x * x);
       const double value = t * (1.0 - t) * magnitude;
-      if (value > best.value) best = {t, value};
+      if (value > best.value)
+        best = {t, value, false};
+      else if (value == best.value && value > 0.0)
+        best.tied = true;
     }
     return best;
   }
   for (int k = 1; k < kIntervals; ++k) {
     const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
     const double value = t * (1.0 - t) * (q0 + s * slope + s * s * bend).norm();
-    if (value > best.value) best = {t, value};
+    if (value > best.value)
+      best = {t, value, false};
+    else if (value == best.value && value > 0.0)
+      best.tied = true;
   }
   return best;
 }
