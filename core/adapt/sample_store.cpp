@@ -55,7 +55,12 @@ EdgeReading read_edge(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[
   const Vec3 quarter = at(0.25), half = at(0.5), three_quarters = at(0.75);
   const EdgePeak peak = edge_peak(quarter, half, three_quarters);
   const double q = quarter.norm(), h = half.norm(), tq = three_quarters.norm();
-  const double at_peak = at(peak.t).norm();
+  // At a quarter point the interpolant's peak is a point already evaluated: the same b, the
+  // same bits (a quarter of the peaks land there; the lattice's middle is t = 32 / 64).
+  const double at_peak = peak.t == 0.5    ? h
+                         : peak.t == 0.25 ? q
+                         : peak.t == 0.75 ? tq
+                                          : at(peak.t).norm();
   EdgeReading r;
   // The measured peak, and the interpolant's where it reads higher (as the quadratic
   // model's maximum counts beside the samples). From 0: the maximum over the three edges is
