@@ -93,35 +93,72 @@ double scalar_maximum(double a, double b, double c) {
   return best;
 }
 
+namespace {
+
+// edge_peak's lattice: t = k / 64 (k = 1 ... 63), s = 4 t - 2, s^2 and t (1 - t), computed once
+// by the same double operations the loop did at each point (IEEE at compile time as at run
+// time: the same bits), so that the loop only evaluates the quartic.
+constexpr int kIntervals = 64;
+struct EdgeLattice {
+  double t[kIntervals - 1], s[kIntervals - 1], s2[kIntervals - 1], w[kIntervals - 1];
+};
+constexpr EdgeLattice make_edge_lattice() {
+  EdgeLattice l{};
+  for (int k = 1; k < kIntervals; ++k) {
+    const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
+    l.t[k - 1] = t;
+    l.s[k - 1] = s;
+    l.s2[k - 1] = s * s;
+    l.w[k - 1] = t * (1.0 - t);
+  }
+  return l;
+}
+constexpr EdgeLattice kEdgeLattice = make_edge_lattice();
+
+// The first largest of the lattice's values, and whether another point ties with it.
+EdgePeak first_largest(const double (&value)[kIntervals - 1]) {
+  EdgePeak best;
+  for (int i = 0; i < kIntervals - 1; ++i) {
+    if (value[i] > best.value)
+      best = {kEdgeLattice.t[i], value[i], false};
+    else if (value[i] == best.value && value[i] > 0.0)
+      best.tied = true;
+  }
+  return best;
+}
+
+}  // namespace
+
 EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quarters) {
   // q at t = 1/4, 1/2, 3/4 (t (1 - t) = 3/16, 1/4, 3/16), as a quadratic in s = 4 t - 2 (-1, 0, 1).
   const Vec3 q0 = half * 4.0, qm = quarter * (16.0 / 3.0), qp = three_quarters * (16.0 / 3.0);
   const Vec3 slope = 0.5 * (qp - qm), bend = 0.5 * (qp + qm) - q0;
   // A lattice of 64 intervals: between its points the quartic rises by under 0.1% of its peak
   // (its second derivative is at most ~10 peak over the edge), and the peak is measured again.
-  constexpr int kIntervals = 64;
-  EdgePeak best;
+  const EdgeLattice& l = kEdgeLattice;
+  double value[kIntervals - 1];
   if (slope[1] == 0.0 && slope[2] == 0.0 && bend[1] == 0.0 && bend[2] == 0.0 && q0[1] == 0.0 &&
       q0[2] == 0.0) {
     // A scalar residual (implicit surfaces): the same values without a square root per point.
     // The norm of (x, 0, 0) is sqrt(x * x), which is |x| exactly in binary floating point
     // unless x * x underflows or overflows; there the norm is taken as above.
-    for (int k = 1; k < kIntervals; ++k) {
-      const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
-      const double x = q0[0] + s * slope[0] + s * s * bend[0];
-      const double magnitude =
-          std::abs(x) > 1e-150 && std::abs(x) < 1e150 ? std::abs(x) : std::sqrt(x * x);
-      const double value = t * (1.0 - t) * magnitude;
-      if (value > best.value) best = {t, value};
+    bool plain = true;
+    for (int i = 0; i < kIntervals - 1; ++i) {
+      const double magnitude = std::abs(q0[0] + l.s[i] * slope[0] + l.s2[i] * bend[0]);
+      plain = plain & (magnitude > 1e-150) & (magnitude < 1e150);
+      value[i] = l.w[i] * magnitude;
     }
-    return best;
+    if (!plain) {
+      for (int i = 0; i < kIntervals - 1; ++i) {
+        const double x = q0[0] + l.s[i] * slope[0] + l.s2[i] * bend[0];
+        if (!(std::abs(x) > 1e-150 && std::abs(x) < 1e150)) value[i] = l.w[i] * std::sqrt(x * x);
+      }
+    }
+    return first_largest(value);
   }
-  for (int k = 1; k < kIntervals; ++k) {
-    const double t = static_cast<double>(k) / kIntervals, s = 4.0 * t - 2.0;
-    const double value = t * (1.0 - t) * (q0 + s * slope + s * s * bend).norm();
-    if (value > best.value) best = {t, value};
-  }
-  return best;
+  for (int i = 0; i < kIntervals - 1; ++i)
+    value[i] = l.w[i] * (q0 + l.s[i] * slope + l.s2[i] * bend).norm();
+  return first_largest(value);
 }
 
 }  // namespace dynamesh

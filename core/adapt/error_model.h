@@ -76,6 +76,9 @@ class QuadraticErrorModel {
 struct EdgePeak {
   double t = 0.5;      // where the interpolant peaks, in (0, 1)
   double value = 0.0;  // its magnitude there
+  // Another lattice point reads the same positive value: the edge read the other way round
+  // (from its other face) would peak at another t (SampleStore's shared edge peaks).
+  bool tied = false;
 };
 EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quarters);
 

@@ -1,6 +1,7 @@
 #include "core/adapt/sample_store.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/adapt/error_model.h"
@@ -35,6 +36,52 @@ double face_area(const Mesh48& mesh, Face f) {
   return 0.5 * (mesh.position(v[1]) - a).cross(mesh.position(v[2]) - a).norm();
 }
 
+// One edge's part of SampleStore::edge_peaks, with what sharing it with the face across needs.
+struct EdgeReading {
+  double peak = 0.0;         // the largest residual found along the edge
+  double largest = 0.0;      // the largest residual among the points evaluated on it
+  double nearest_end = 0.0;  // of those points the nearest to an end, as a share of the edge
+  bool tied = false;         // EdgePeak::tied
+};
+
+// Edge e joins vertices e + 1 (t = 0) and e + 2 (t = 1).
+EdgeReading read_edge(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3], int e) {
+  const auto at = [&](double t) {
+    Vec3 b = Vec3::Zero();
+    b[(e + 1) % 3] = 1.0 - t;
+    b[(e + 2) % 3] = t;
+    return probe.residual_at(p, uv, b);
+  };
+  const Vec3 quarter = at(0.25), half = at(0.5), three_quarters = at(0.75);
+  const EdgePeak peak = edge_peak(quarter, half, three_quarters);
+  const double q = quarter.norm(), h = half.norm(), tq = three_quarters.norm();
+  // At a quarter point the interpolant's peak is a point already evaluated: the same b, the
+  // same bits (a quarter of the peaks land there; the lattice's middle is t = 32 / 64).
+  const double at_peak = peak.t == 0.5    ? h
+                         : peak.t == 0.25 ? q
+                         : peak.t == 0.75 ? tq
+                                          : at(peak.t).norm();
+  EdgeReading r;
+  // The measured peak, and the interpolant's where it reads higher (as the quadratic
+  // model's maximum counts beside the samples). From 0: the maximum over the three edges is
+  // then the one max({0, ...}) over all fifteen values (a NaN skipped alike).
+  r.peak = std::max({0.0, q, h, tq, peak.value, at_peak});
+  r.largest = std::max({0.0, q, h, tq, at_peak});
+  r.nearest_end = std::min({0.25, peak.t, 1.0 - peak.t});
+  r.tied = peak.tied;
+  return r;
+}
+
+// Whether some coordinate is (nearly) zero at both ends: only then can a point of the edge get
+// a zero coordinate whose sign depends on the order of the barycentric sum, and with it on
+// the face (SampleStore::shared_edge_peaks).
+template <class V>
+bool zero_at_both_ends(const V& a, const V& b) {
+  for (int i = 0; i < a.size(); ++i)
+    if (std::abs(a[i]) < 1e-290 && std::abs(b[i]) < 1e-290) return true;
+  return false;
+}
+
 }  // namespace
 
 void SampleStore::prefetch_face(const Mesh48& mesh, Face f) const {
@@ -61,6 +108,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   measured_.resize(capacity, 0);
   model_error_.resize(capacity, 0.0);
   peak_error_.resize(capacity, -1.0);
+  edge_slots_.resize(3 * capacity);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -180,7 +228,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   const QuadraticErrorModel::Result r = model.evaluate();
   model_error_[f.idx] = r.error;
   const bool search = peak_floor_ > 0.0 && r.error >= search_start_;
-  peak_error_[f.idx] = search ? edge_peaks(probe, p, uv) : -1.0;
+  peak_error_[f.idx] = search ? shared_edge_peaks(mesh, probe, f, p, uv) : -1.0;
   face_error_[f.idx] = search ? peak_reading(r.error, peak_error_[f.idx]) : r.error;
   measured_[f.idx] = 1;
   return r.resolved;
@@ -213,20 +261,80 @@ double SampleStore::reading_gain(Face f, double bound) const {
 
 double SampleStore::edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]) {
   double worst = 0.0;
+  for (int e = 0; e < 3; ++e) worst = std::max(worst, read_edge(probe, p, uv, e).peak);
+  return worst;
+}
+
+void SampleStore::new_pass(const SurfaceProbe& probe) {
+  if (++pass_ == kSlotBusy) {  // after 2^31 passes: every slot made stale by hand
+    for (EdgeSlot& slot : edge_slots_) slot.pass = 0;
+    pass_ = 1;
+  }
+  // Parametric surfaces interpolate (u, v) from the face's first corner, unwrapped across a
+  // periodic seam and wrapped back: the same edge point's (u, v) could differ in its last bits
+  // between the two faces. Elsewhere (u, v) is the edge's own.
+  share_edges_ = share_edge_peaks_;
+  if (share_edges_ && probe.parametric()) {
+    const ParameterDomain d = static_cast<const ParametricSurface&>(probe.surface()).domain();
+    share_edges_ = !d.periodic_u && !d.periodic_v;
+  }
+}
+
+// Why the face across an edge reads, to the bit, the peak this face found (then it takes it
+// from the slot). Both evaluate the same points: edge_peaks goes from vertex e + 1 to e + 2,
+// the face across (consistently oriented) the other way, and t' = 1 - t is exact for the
+// quarter points and the lattice's k / 64 (edge_peak: -s and -slope are exact, so every
+// lattice value is the mirrored one's; the first maximum is the mirrored one unless another
+// lattice point ties, EdgePeak::tied). A point's coordinates are (1 - t) a + t b plus the
+// opposite corner times 0: the same sum but for the sign of a zero coordinate, which can
+// differ only where both ends have that coordinate zero (zero_at_both_ends). What remains is
+// the implicit residual's cap (SurfaceProbe::signed_distance_in_triangle), which looks at the
+// distance to all three corners. A point's reading r is uncapped when |r| is below half its
+// distance to each corner (were it capped, |r| would be at least the nearest corner's
+// distance, up to rounding): to the edge's ends at least nearest_end times the edge's length,
+// to the opposite corner at least that corner's height over the edge. The face that fills a
+// slot checks its own; the face that reads it checks its height against the largest residual
+// evaluated (then it is uncapped there too, and reads the same signed distance). The 1e-9 of
+// the corners' coordinates keeps the rounding of those distances far below the factor 2.
+double SampleStore::shared_edge_peaks(const Mesh48& mesh, const SurfaceProbe& probe, Face f,
+                                      const Vec3 p[3], const Vec2 uv[3]) {
+  const bool implicit = !probe.parametric();
+  const double scale =
+      1e-9 * std::max({p[0].cwiseAbs().maxCoeff(), p[1].cwiseAbs().maxCoeff(),
+                       p[2].cwiseAbs().maxCoeff(), std::numeric_limits<double>::min()});
+  double worst = 0.0;
   for (int e = 0; e < 3; ++e) {
-    // Edge e joins vertices e + 1 (t = 0) and e + 2 (t = 1).
-    const auto at = [&](double t) {
-      Vec3 b = Vec3::Zero();
-      b[(e + 1) % 3] = 1.0 - t;
-      b[(e + 2) % 3] = t;
-      return probe.residual_at(p, uv, b);
-    };
-    const Vec3 quarter = at(0.25), half = at(0.5), three_quarters = at(0.75);
-    const EdgePeak peak = edge_peak(quarter, half, three_quarters);
-    // The measured peak, and the interpolant's where it reads higher (as the quadratic
-    // model's maximum counts beside the samples).
-    worst = std::max(
-        {worst, quarter.norm(), half.norm(), three_quarters.norm(), peak.value, at(peak.t).norm()});
+    const Halfedge twin = mesh.twin(Halfedge(f, e));
+    const int a = (e + 1) % 3, b = (e + 2) % 3;
+    if (!share_edges_ || !twin.is_valid() || zero_at_both_ends(p[a], p[b]) ||
+        (!implicit && zero_at_both_ends(uv[a], uv[b]))) {
+      worst = std::max(worst, read_edge(probe, p, uv, e).peak);
+      continue;
+    }
+    // The distances the cap could bind at, on this face (implicit only).
+    const Vec3 edge = p[b] - p[a];
+    const double length = edge.norm();
+    const double height = implicit ? edge.cross(p[e] - p[a]).norm() / length
+                                   : std::numeric_limits<double>::infinity();
+    EdgeSlot& slot = edge_slots_[std::min(Halfedge(f, e).idx, twin.idx)];
+    std::atomic_ref<std::uint32_t> state(slot.pass);
+    std::uint32_t seen = state.load(std::memory_order_acquire);
+    if (seen == pass_ && height > scale && 2.0 * slot.largest <= height) {
+      worst = std::max(worst, slot.peak);
+      std::atomic_ref<std::uint64_t>(edge_peaks_shared_).fetch_add(1, std::memory_order_relaxed);
+      continue;
+    }
+    const EdgeReading r = read_edge(probe, p, uv, e);
+    worst = std::max(worst, r.peak);
+    const double reach = std::min(height, implicit ? r.nearest_end * length : height);
+    const bool fill = !r.tied && reach > scale && 2.0 * r.largest <= reach &&
+                      std::isfinite(r.peak) && std::isfinite(r.largest);
+    if (fill && (seen & ~kSlotBusy) != pass_ &&
+        state.compare_exchange_strong(seen, pass_ | kSlotBusy, std::memory_order_acquire)) {
+      slot.peak = r.peak;
+      slot.largest = r.largest;
+      state.store(pass_, std::memory_order_release);
+    }
   }
   return worst;
 }
@@ -235,6 +343,7 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
                                  const std::vector<Face>& faces) {
   grow_faces(mesh.face_capacity());
   compact_if_wasteful();
+  new_pass(probe);
   // Member scratch buffers: this runs after every split, so it must not allocate.
   std::vector<Face>& pending = pending_;
   std::vector<Face>& next = next_pending_;

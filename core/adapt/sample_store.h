@@ -63,9 +63,17 @@ class SampleStore final : public MeshListener {
   // explain (error_model.h) gets a denser stratified pattern (4x, up to
   // kMaxSamplesPerFace) and is measured again: sampling adapts to where the error is not
   // smooth at the triangle's scale, instead of trusting a sparse maximum there.
+  // A call is one pass: the mesh and its positions do not change within it, so an edge
+  // shared by two searched faces has its peaks evaluated once (edge_peaks_shared).
   void evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
                       const std::vector<Face>& faces);
   void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
+  // How many times so far a face read an edge's peak that its neighbour had found in the same
+  // pass, instead of evaluating the edge again.
+  std::uint64_t edge_peaks_shared() const { return edge_peaks_shared_; }
+  // On by default; off, every face evaluates its own edges (the reference the tests compare
+  // with).
+  void share_edge_peaks(bool on) { share_edge_peaks_ = on; }
   // The L-infinity error the weld planned in `plan` would leave: every sample of the star
   // measured against the two (one) parent triangles, with the quadratic model (and, at or
   // above the peak search floor, the parents' edge peaks, as evaluate_faces would read them).
@@ -138,6 +146,13 @@ class SampleStore final : public MeshListener {
   bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
   // The largest residual found along the triangle's three edges (EdgePeak).
   static double edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]);
+  // The same for the live face f (corners p, uv), each edge found once per pass: an edge's
+  // peak is kept in its slot (edge_slots_) and read by the face across it, where that face
+  // would find the same value to the bit (sample_store.cpp, shared_edge_peaks).
+  double shared_edge_peaks(const Mesh48& mesh, const SurfaceProbe& probe, Face f, const Vec3 p[3],
+                           const Vec2 uv[3]);
+  // Starts a pass of evaluate_faces: every edge slot filled before is stale.
+  void new_pass(const SurfaceProbe& probe);
   // The reading of a face whose model reads `model` (>= search_start_) and whose edges peak at
   // `peaks` (set_peak_search).
   double peak_reading(double model, double peaks) const;
@@ -159,7 +174,20 @@ class SampleStore final : public MeshListener {
   std::vector<double> model_error_;           // the quadratic model's reading (reading_gain)
   std::vector<double> peak_error_;            // its edges' peaks (-1: not searched)
   std::vector<Face> pending_, next_pending_;  // evaluate_faces' work lists
-  std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
+  // One slot per halfedge id; an edge uses its lower halfedge's. Valid when `pass` is the
+  // current pass_; pass_ | kSlotBusy while one thread fills it (std::atomic_ref).
+  struct EdgeSlot {
+    double peak = 0.0;     // the edge's peak (edge_peaks)
+    double largest = 0.0;  // the largest residual evaluated on it (the reader's guard)
+    std::uint32_t pass = 0;
+  };
+  static constexpr std::uint32_t kSlotBusy = std::uint32_t{1} << 31;
+  std::vector<EdgeSlot> edge_slots_;
+  std::uint32_t pass_ = 0;
+  bool share_edge_peaks_ = true;
+  bool share_edges_ = false;  // this pass may share them (new_pass)
+  std::uint64_t edge_peaks_shared_ = 0;
+  std::vector<std::uint8_t> unresolved_;  // per-face flags (evaluate_faces, refresh_patterns)
 };
 
 template <class Fn>

@@ -154,5 +154,32 @@ TEST(EdgePeak, ScalarResidualReadsExactlyAsItsNorm) {
   }
 }
 
+// Read from its other end (the face across the edge), an edge's lattice values are the same,
+// mirrored, to the bit; the peak's t is the mirrored one exactly when no other lattice point
+// ties with it, and `tied` says when one does (SampleStore shares an edge's peak only then).
+TEST(EdgePeak, ReadFromTheOtherEndMirrorsUnlessTied) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int tied = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Vec3 quarter(n(rng), n(rng), n(rng)), half(n(rng), n(rng), n(rng)),
+        three_quarters(n(rng), n(rng), n(rng));
+    if (trial % 4 == 0) three_quarters = quarter;  // symmetric: every value has a mirror twin
+    if (trial % 8 == 1)
+      quarter[1] = quarter[2] = half[1] = half[2] = three_quarters[1] = three_quarters[2] =
+          0.0;  // scalar
+    const EdgePeak forward = edge_peak(quarter, half, three_quarters);
+    const EdgePeak backward = edge_peak(three_quarters, half, quarter);
+    EXPECT_EQ(forward.value, backward.value) << trial;
+    EXPECT_EQ(forward.tied, backward.tied) << trial;
+    if (forward.tied)
+      ++tied;
+    else
+      EXPECT_EQ(forward.t, 1.0 - backward.t) << trial;
+  }
+  // The symmetric residuals that peak off the midpoint tie (those peaking at t = 1/2 do not).
+  EXPECT_GT(tied, 100);
+}
+
 }  // namespace
 }  // namespace dynamesh
