@@ -83,17 +83,27 @@ Variant blobs(const std::string& name, const Vec3& d, const Vec3& o, double s2, 
   return v;
 }
 
-// The issue's torus (R = 1, r = 0.3) with a bump of strength c t at angle phi on its core
-// circle: there F = -0.09 + c t, so the tube pinches through at t = 0.09 / c.
-Variant torus_pinch(const std::string& name, double phi, double c, int steps) {
-  const double x = std::cos(phi), y = std::sin(phi);
+// A torus of radii R and r with a bump of strength c t and width^2 w2 at angle phi on its core
+// circle: there F = -r^2 + c t, so the tube pinches through at t = r^2 / c (the bump's centre
+// is a saddle of F while w2 > c t, across the tube F curves up by 2 (1 - c t / w2)). The
+// issue's torus: R = 1, r = 0.3, w2 = 0.16. The event time is taken from the numbers as printed.
+struct TorusShape {
+  double R = 1, r = 0.3, w2 = 0.16;
+  std::string bounds = "-1.5,-1.5,-0.5,1.5,1.5,0.5";
+};
+
+Variant torus_pinch(const std::string& name, double phi, double c, int steps,
+                    const TorusShape& shape = {}) {
+  const std::string r2 = std::to_string(shape.r * shape.r), cs = std::to_string(c);
   Variant v;
   v.name = name;
-  v.formula = "(sqrt(x^2+y^2)-1)^2 + z^2 - 0.09 + " + std::to_string(c) + "*t*exp(-((x-" +
-              std::to_string(x) + ")^2+(y-" + std::to_string(y) + ")^2+z^2)/0.16)";
-  v.bounds = "-1.5,-1.5,-0.5,1.5,1.5,0.5";
+  v.formula = "(sqrt(x^2+y^2)-" + std::to_string(shape.R) + ")^2 + z^2 - " + r2 + " + " + cs +
+              "*t*exp(-((x-" + std::to_string(shape.R * std::cos(phi)) + ")^2+(y-" +
+              std::to_string(shape.R * std::sin(phi)) + ")^2+z^2)/" + std::to_string(shape.w2) +
+              ")";
+  v.bounds = shape.bounds;
   v.steps = steps;
-  v.events = {{0.09 / c, "split"}};
+  v.events = {{std::stod(r2) / std::stod(cs), "split"}};
   v.topology = [](double t, const std::vector<double>& times) {
     return t < times[0] ? std::pair<long, long>{1, 0} : std::pair<long, long>{1, 2};
   };
@@ -546,6 +556,193 @@ TEST(TopologyVariantsCli, ThinTorusPinchedJustAfterAFrame) {
     return t < times[0] ? std::pair<long, long>{1, 0} : std::pair<long, long>{1, 2};
   };
   run_and_judge(v);
+}
+
+// The random-variant sweep (issue 16: "hidden variants will be checked"). A seed draws one
+// variant of a kind: 1 or 3 mod 4, a torus pinch; 2 mod 4, two blobs merging and splitting
+// again; 0 mod 4, a blob born or dying beside another. The torus and the blobs are drawn as
+// session 16's throw-away sweep drew them (seeds 1-24: 3, 13, 15 and 18 failed on main f90b776).
+// Uniform draws by hand from std::mt19937_64 (fully specified), computed as libstdc++'s
+// uniform_real_distribution computes them, so a seed is the same variant with any library.
+class Draws {
+ public:
+  explicit Draws(unsigned seed) : rng_(seed) {}
+  double operator()(double a, double b) {
+    double u = static_cast<double>(rng_()) / 18446744073709551616.0;  // 2^64
+    if (u >= 1) u = std::nextafter(1.0, 0.0);
+    return u * (b - a) + a;
+  }
+  // Normalized from the cube, drawn z first (session 16 drew Vec3(U, U, U), built right to left).
+  Vec3 direction() {
+    const double z = (*this)(-1, 1), y = (*this)(-1, 1), x = (*this)(-1, 1);
+    return Vec3(x, y, z).normalized();
+  }
+  Vec3 offset(double half) {
+    const double z = (*this)(-half, half), y = (*this)(-half, half), x = (*this)(-half, half);
+    return Vec3(x, y, z);
+  }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+std::string csv(const Vec3& p) {
+  return std::to_string(p[0]) + "," + std::to_string(p[1]) + "," + std::to_string(p[2]);
+}
+
+// The bounds: the box of the given points, widened by `margin`.
+std::string bounds_around(const std::vector<Vec3>& points, double margin) {
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return csv(lo - Vec3::Constant(margin)) + "," + csv(hi + Vec3::Constant(margin));
+}
+
+// A torus R in (0.8, 1.2), r in (0.2, 0.35) pinched at a random angle at tp in (0.2, 0.8): the
+// bump's strength c = r^2 / tp, its width^2 w2 at least 1.5 r^2 > c tp, so its centre is still
+// a saddle at tp (TorusShape) and the tube pinches through there.
+Variant sweep_torus(const std::string& name, Draws& draw, int steps, std::string& args) {
+  TorusShape shape;
+  shape.R = draw(0.8, 1.2);
+  shape.r = draw(0.2, 0.35);
+  shape.w2 = std::max(0.1, 1.5 * shape.r * shape.r) + draw(0, 0.1);
+  const double phi = draw(0, 2 * M_PI), tp = draw(0.2, 0.8);
+  const double xy = shape.R + shape.r + 0.3, z = shape.r + 0.2;
+  shape.bounds = bounds_around({Vec3(-xy, -xy, -z), Vec3(xy, xy, z)}, 0);
+  args = "torus R " + std::to_string(shape.R) + " r " + std::to_string(shape.r) + " w2 " +
+         std::to_string(shape.w2) + " phi " + std::to_string(phi) + " tp " + std::to_string(tp);
+  return torus_pinch(name, phi, shape.r * shape.r / tp, steps, shape);
+}
+
+// Two blobs of width^2 s2 in (0.15, 0.35) along a random direction about a random centre:
+// touching at a = sqrt(s2 ln 4) (blobs()), closest at a0 = a (0.3 to 0.8), farthest at
+// a0 + a1 = a + (0.3 to 1): they merge at 0.5 - 0.5 w and split at 0.5 + 0.5 w, with
+// w = sqrt((a - a0) / a1) in (0.29, 0.79): events within (0.10, 0.36) and (0.64, 0.90). The
+// bounds: 0.15 (or, one time in 0.3, 0.6) beyond the blobs' radius at their farthest.
+Variant sweep_blobs(const std::string& name, Draws& draw, int steps, std::string& args) {
+  const Vec3 d = draw.direction(), o = draw.offset(0.15);
+  const double s2 = draw(0.15, 0.35), touch = std::sqrt(s2 * std::log(4.0));
+  const double a0 = touch * draw(0.3, 0.8), a1 = touch - a0 + draw(0.3, 1.0);
+  const double margin = std::sqrt(s2 * std::log(2.0)) + (draw(0, 1) < 0.3 ? 0.6 : 0.15);
+  const std::string bounds = bounds_around({o - (a0 + a1) * d, o + (a0 + a1) * d}, margin);
+  args = "blobs d " + csv(d) + " o " + csv(o) + " s2 " + std::to_string(s2) + " a0 " +
+         std::to_string(a0) + " a1 " + std::to_string(a1);
+  return blobs(name, d, o, s2, a0, a1, bounds, steps);
+}
+
+double as_printed(double x) {
+  return std::stod(std::to_string(x));
+}
+
+// A blob at c2 of weight w(t) = w0 +- k t beside one of weight 1 at c1, both of width^2 s2 in
+// (0.15, 0.3), L = |c1 - c2| = (1.25 to 1.6) times where two blobs of weight 1 touch, so they
+// never merge (w <= 1): 0.5 - exp(-|p - c1|^2 / s2) - w exp(-|p - c2|^2 / s2). The minimum near
+// c2 lies on the axis (across it both terms curve up); the blob is born (or dies) where that
+// minimum is zero, at weight w* (a bisection on w of a golden-section search along the axis,
+// on the numbers as printed), at te in (0.2, 0.8), with k in (0.45, 0.6): w within (0.02, 0.98).
+Variant sweep_born_or_dying(const std::string& name, Draws& draw, int steps, std::string& args) {
+  const Vec3 d = draw.direction(), o = draw.offset(0.15);
+  const double s2 = as_printed(draw(0.15, 0.3));
+  const double L = 2 * std::sqrt(s2 * std::log(4.0)) * draw(1.25, 1.6);
+  const double te = draw(0.2, 0.8), k = as_printed(draw(0.45, 0.6));
+  const bool born = draw(0, 1) < 0.5;
+  Vec3 c1 = o - 0.5 * L * d, c2 = o + 0.5 * L * d;
+  for (int i = 0; i < 3; ++i) {
+    c1[i] = as_printed(c1[i]);
+    c2[i] = as_printed(c2[i]);
+  }
+  const Vec3 axis = (c1 - c2).normalized();
+  const auto F = [&](double x, double w) {  // at c2 + x axis
+    const Vec3 p = c2 + x * axis;
+    return 0.5 - std::exp(-(p - c1).squaredNorm() / s2) - w * std::exp(-x * x / s2);
+  };
+  const auto smallest = [&](double w) {
+    const double g = 0.5 * (std::sqrt(5.0) - 1);
+    double lo = -0.5 * std::sqrt(s2), hi = 0.5 * std::sqrt(s2);
+    for (int i = 0; i < 200; ++i) {
+      const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+      if (F(a, w) < F(b, w))
+        hi = b;
+      else
+        lo = a;
+    }
+    return F(0.5 * (lo + hi), w);
+  };
+  double wlo = 0.3, whi = 0.7;  // smallest > 0 at wlo, < 0 at whi
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (wlo + whi);
+    (smallest(mid) > 0 ? wlo : whi) = mid;
+  }
+  const double w_event = 0.5 * (wlo + whi);
+  const double w0 = as_printed(born ? w_event - k * te : w_event + k * te);
+  const auto blob = [&](const Vec3& c) {
+    return "exp(-((x-" + std::to_string(c[0]) + ")^2+(y-" + std::to_string(c[1]) + ")^2+(z-" +
+           std::to_string(c[2]) + ")^2)/" + std::to_string(s2) + ")";
+  };
+  Variant v;
+  v.name = name;
+  v.formula = "0.5 - " + blob(c1) + " - (" + std::to_string(w0) + (born ? "+" : "-") +
+              std::to_string(k) + "*t)*" + blob(c2);
+  v.bounds = bounds_around({c1, c2}, std::sqrt(s2 * std::log(2.0)) + 0.5);
+  v.steps = steps;
+  v.events = {{std::abs(w_event - w0) / k, born ? "birth" : "death"}};
+  v.topology = born ? [](double t, const std::vector<double>& times) {
+    return t < times[0] ? std::pair<long, long>{1, 2} : std::pair<long, long>{2, 4};
+  } : [](double t, const std::vector<double>& times) {
+    return t < times[0] ? std::pair<long, long>{2, 4} : std::pair<long, long>{1, 2};
+  };
+  args = std::string(born ? "born" : "dying") + " s2 " + std::to_string(s2) + " L " +
+         std::to_string(L) + " k " + std::to_string(k) + " w* " + std::to_string(w_event) + " te " +
+         std::to_string(v.events[0].first);
+  return v;
+}
+
+Variant sweep_variant(unsigned seed, int steps) {
+  Draws draw(seed);
+  const std::string name = "sweep" + std::to_string(seed);
+  std::string args;
+  Variant v = seed % 2   ? sweep_torus(name, draw, steps, args)
+              : seed % 4 ? sweep_blobs(name, draw, steps, args)
+                         : sweep_born_or_dying(name, draw, steps, args);
+  std::string events;
+  for (const auto& [time, kind] : v.events) events += " " + kind + " " + std::to_string(time);
+  std::printf("%s: %s;%s\n  --implicit '%s' --bounds %s --steps %d\n", name.c_str(), args.c_str(),
+              events.c_str(), v.formula.c_str(), v.bounds.c_str(), v.steps);
+  std::fflush(stdout);
+  return v;
+}
+
+// In CI a fixed few seeds (about 25 s); DYNAMESH_SWEEP_SEEDS=a-b (or one seed) and
+// DYNAMESH_SWEEP_STEPS=N run others. Seed 15 failed on main (dense error 1.132 (T + eps) the
+// frame 0.005 before the pinch).
+TEST(TopologySweep, RandomVariants) {
+  std::vector<unsigned> seeds = {15, 4};
+  if (const char* env = std::getenv("DYNAMESH_SWEEP_SEEDS")) {
+    char* end = nullptr;
+    const unsigned long first = std::strtoul(env, &end, 10);
+    unsigned long last = first;
+    bool ok = end != env;
+    if (ok && *end == '-') {
+      const char* second = end + 1;
+      last = std::strtoul(second, &end, 10);
+      ok = end != second;
+    }
+    ASSERT_TRUE(ok && *end == 0 && first <= last)
+        << "DYNAMESH_SWEEP_SEEDS=" << env << ": expected a seed or a range a-b";
+    seeds.clear();
+    for (unsigned long s = first; s <= last; ++s) seeds.push_back(static_cast<unsigned>(s));
+  }
+  int steps = 40;
+  if (const char* env = std::getenv("DYNAMESH_SWEEP_STEPS")) {
+    steps = std::atoi(env);
+    ASSERT_GT(steps, 0) << "DYNAMESH_SWEEP_STEPS=" << env;
+  }
+  for (const unsigned seed : seeds) {
+    SCOPED_TRACE("sweep seed " + std::to_string(seed));
+    run_and_judge(sweep_variant(seed, steps));
+  }
 }
 
 }  // namespace
