@@ -5,9 +5,11 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
+#include <vector>
 
 #include "core/mesh/mesh48.h"
 #include "core/surface/surface.h"
@@ -81,6 +83,33 @@ inline DenseError dense_error(
       if (d > result.max_error) {
         result.max_error = d;
         result.worst = b0 * p[0] + b1 * p[1] + b2 * p[2];
+      }
+    });
+  }
+  return result;
+}
+
+// The same for a triangle list of an implicit surface (a frame the CLI exported, read back):
+// `keep(k)` selects triangles by their index in the list.
+inline DenseError dense_error(
+    const std::vector<Vec3>& positions, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+    const ImplicitSurface& surface, double density, std::uint64_t seed,
+    const std::function<bool(std::size_t)>& keep = [](std::size_t) { return true; }) {
+  DenseError result;
+  std::mt19937_64 rng(seed);
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    if (!keep(k)) continue;
+    const Vec3 p[3] = {positions[triangles[k][0]], positions[triangles[k][1]],
+                       positions[triangles[k][2]]};
+    const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const auto n = static_cast<int>(std::max(3.0, std::ceil(density * area)));
+    for_each_dense_point(n, rng, [&](double b0, double b1, double b2) {
+      const Vec3 x = b0 * p[0] + b1 * p[1] + b2 * p[2];
+      const double d = distance_to_surface(surface, x);
+      ++result.points;
+      if (d > result.max_error) {
+        result.max_error = d;
+        result.worst = x;
       }
     });
   }

@@ -16,6 +16,7 @@
 #include "core/adapt/adapter.h"
 #include "core/adapt/criteria.h"
 #include "core/geometry/fold_repair.h"
+#include "core/surface/expression/triangle_mesh_file.h"
 #include "core/surface/volume/mri_base_mesh.h"
 #include "core/surface/volume/mri_surface.h"
 #include "core/topology/topology_events.h"
@@ -595,6 +596,63 @@ TEST(MriEvents, CliColin27SweptIn8StepsIsEmbeddedAndNotReBased) {
     EXPECT_TRUE(v.embedded_closed_manifold()) << name << ": " << v.describe();
   }
   fs::remove_all(dir);
+}
+
+// Runs Colin27 with closing 2, 0 to 4 mm deep, through the binary with `args` added, and
+// judges every exported frame (times[k] is frame k's): CGAL-embedded, and within 1.10 (T + eps)
+// by a dense measurement of every 4th triangle; the run within T + eps sampled, not re-based,
+// with no budget hit.
+void expect_colin27_frames_embedded(const std::string& name, std::vector<std::string> args,
+                                    const std::vector<double>& times) {
+  const auto dir = test::scratch_dir(name);
+  args.insert(args.begin(), {"--scene", "mri", "--param", "closing=2", "--param", "depth_max=4"});
+  args.insert(args.end(), {"--max-triangles", "60000", "--export", dir.string(), "--quiet"});
+  const test::CliRun run = test::run_cli(args);
+  ASSERT_EQ(run.status, 0) << run.err;
+  ASSERT_TRUE(run.json.is_object()) << run.out;
+  const AdaptOptions options = mri_suggested_options();
+  const double bound = options.threshold + options.epsilon;
+  EXPECT_EQ(run.json["budget_hit"], false) << run.err;
+  EXPECT_EQ(run["rebuilds"], 0) << run.err;
+  EXPECT_LE(run["worst_max_sample_error"], bound) << run.err;
+  EXPECT_LT(run["peak_triangles"], 20000) << run.err;
+  const auto surface = colin27_layers(2.0, 4.0);
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    char frame_name[32];
+    std::snprintf(frame_name, sizeof frame_name, "frame_%05zu.ply", k);
+    const TriangleMesh frame = read_triangle_mesh((dir / frame_name).string());
+    const test::MeshValidity v = test::check_mesh_validity(frame.positions, frame.triangles);
+    EXPECT_TRUE(v.embedded_closed_manifold()) << frame_name << ": " << v.describe();
+    if (!v.manifold()) continue;  // a tangle from a runaway refinement: enough said
+    surface->set_time(times[k]);
+    const auto dense = test::dense_error(frame.positions, frame.triangles, *surface, 1.0, 29,
+                                         [](std::size_t t) { return t % 4 == 0; });
+    EXPECT_LE(dense.max_error, 1.10 * bound)
+        << frame_name << ": dense error at (" << dense.worst.transpose() << ")";
+  }
+}
+
+// The same sweep in 4 steps of 1 mm. The rim of the cavity's hole sweeps along a ridge of D
+// faster than in 8 steps, and the faces there, stretched to 2-7 mm, fold. Session 15's code
+// published the last frame with 11 crossing pairs (its re-mesh ladder failed: the cut levelled
+// down reached 12-42 mm with 2 to 7 border loops where F's contour has one; levelled up, the
+// strip joining the patch to it turned over). On main 0f86ef5 every frame is embedded (which of
+// session 16's changes did it was not isolated); with session 15's interior-peak sampling merged
+// in (integ17-peak, not landed) the folded faces were split without end and the last frame ran
+// into the triangle budget (60,002 triangles, 27 mm sampled, 7,986 degenerate triangles).
+TEST(MriEvents, CliColin27SweptIn4StepsIsEmbeddedAtEveryFrame) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  expect_colin27_frames_embedded("mri_colin27_sweep_4_steps", {"--steps", "4"},
+                                 {0.0, 0.25, 0.5, 0.75, 1.0});
+}
+
+// Started 4 mm deep: the first mesh is made 0 mm deep, clear of the hole that opens 0.81 mm
+// deep, and carried to 4 mm in 8 steps (mri_start_depth), which meet the rim's folds as the
+// sweeps do. Session 15's code left 19 crossing pairs; integ17-peak ran into the triangle budget
+// (59,998 triangles, 32.5 mm sampled, not a manifold).
+TEST(MriEvents, CliColin27Started4MmDeepIsEmbedded) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  expect_colin27_frames_embedded("mri_colin27_t0_4mm", {"--t0", "1", "--steps", "0"}, {1.0});
 }
 
 }  // namespace
