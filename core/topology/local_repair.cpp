@@ -424,9 +424,13 @@ Patch contour_patch(const ImplicitSurface& surface, const Vec3& centre, double r
   std::vector<Vec3> placed(contour.positions.size());
   for (std::size_t v = 0; v < placed.size(); ++v)
     placed[v] = root_on_edge(surface, contour.edges[v], kMargin, level);
+  std::vector<signed char> in(placed.size(), -1);  // each vertex asked once
   for (const Triangle& t : contour.triangles) {
     bool inside = true;
-    for (const std::uint32_t v : t) inside = inside && inside_hole(placed[v]);
+    for (const std::uint32_t v : t) {
+      if (in[v] < 0) in[v] = inside_hole(placed[v]) ? 1 : 0;
+      inside = inside && in[v];
+    }
     if (!inside) continue;
     Triangle local;
     for (int i = 0; i < 3; ++i) {
@@ -702,7 +706,85 @@ const char* refine_near(Mesh48& mesh, const Vec3& centre, double r, TrialSplits&
 }
 
 const char* const kBudgetSpent = "the repair's work budget (grid cells) is spent";
+const char* const kTooWideToFill = "the cut is too wide to fill within the work budget";
 const char* const kNothingToRaise = "the cut's border is level";
+
+// The cut as a region of space to fill with F's contour (an attempt's fill mode): a point is
+// in it when the mesh's face nearest to it is a cut one and it lies at least `gap` from the
+// cut's border. Where the faces around the event are long and thin against the cut's radius,
+// no cut suits a patch within the radius: Colin27 with closing 2 swept to 4 mm in 4 steps, the
+// layer's faces at the cavity's rim stretched to 2-7 mm, the cut levelled down reached 12-42 mm
+// with 2 to 7 border loops (F's contour there has one), levelled up it had one loop 4-14 mm
+// out, and the strip joining the patch to it turned over where F bends round the rim. All 290
+// attempts in the last sub-step failed, and the frame was published crossing itself (77 pairs
+// with the sample seed 3) or, with other sampling, the folds left ran the refinement into the
+// triangle budget (60,002 triangles, 27 mm). Filled, the first rung's cut is taken. The mesh
+// follows F to within T, so its nearest face tells which part of F a point belongs to.
+class HoleFill {
+ public:
+  HoleFill(const Mesh48& mesh, const std::vector<char>& cut, const std::vector<Face>& removed,
+           const std::vector<Loop>& loops, const Vec3& centre) {
+    for (const Loop& loop : loops)
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        border_.push_back(
+            {mesh.position(Vertex(loop[k])), mesh.position(Vertex(loop[(k + 1) % loop.size()]))});
+    Box3 box;
+    box.min = box.max = centre;
+    for (const Face f : removed)
+      for (const Vertex v : mesh.vertices(f)) {
+        const Vec3& p = mesh.position(v);
+        box.min = box.min.cwiseMin(p);
+        box.max = box.max.cwiseMax(p);
+        reach = std::max(reach, (p - centre).norm());
+      }
+    // The faces that may be nearest to a point within the cut's box grown by half the margin:
+    // the cut's, and the remaining ones whose boxes reach into the box grown by the margin
+    // (any other lies farther than half the margin from such a point).
+    margin_ = 0.25 * reach;
+    const Vec3 margin = Vec3::Constant(margin_);
+    box_.min = box.min - 0.5 * margin;
+    box_.max = box.max + 0.5 * margin;
+    for (const Face f : mesh.live_faces()) {
+      const auto v = mesh.vertices(f);
+      const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+      if (!cut[f.idx] &&
+          ((lo - box.max - margin).maxCoeff() > 0 || (box.min - margin - hi).maxCoeff() > 0))
+        continue;
+      faces_.push_back({a, b, c, cut[f.idx] != 0});
+    }
+  }
+  bool inside(const Vec3& p, double gap) const;
+  double reach = 0.0;  // of the cut's vertices from the event
+
+ private:
+  struct Tri {
+    Vec3 a, b, c;
+    bool cut;
+  };
+  std::vector<std::pair<Vec3, Vec3>> border_;
+  std::vector<Tri> faces_;
+  Box3 box_;
+  double margin_ = 0.0;
+};
+
+bool HoleFill::inside(const Vec3& p, double gap) const {
+  if ((p - box_.max).maxCoeff() > 0 || (box_.min - p).maxCoeff() > 0) return false;
+  for (const auto& [a, b] : border_) {
+    const Vec3 ab = b - a;
+    const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    if ((a + t * ab - p).squaredNorm() < gap * gap) return false;
+  }
+  double nearest = HUGE_VAL;
+  bool in_cut = false;
+  for (const Tri& f : faces_) {
+    const double d = (nearest_on_triangle(p, f.a, f.b, f.c) - p).squaredNorm();
+    if (d < nearest) nearest = d, in_cut = f.cut;
+  }
+  // Farther than half the margin from every listed face, a face not listed may be nearer; and
+  // such a point of F is not on the mesh's sheet there anyway.
+  return in_cut && nearest <= 0.25 * margin_ * margin_;
+}
 
 // What a successful attempt does to the mesh: its splits (in order), then the surgery.
 struct RepairPlan {
@@ -722,7 +804,8 @@ struct RepairPlan {
 LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface,
                           const SplitPlacement& place, const ContourLevel& level,
                           const Vec3& centre, double r, double h, double max_h, bool islands,
-                          bool raise, bool refine, std::size_t grid_cells_left, RepairPlan& plan) {
+                          bool raise, bool refine, bool fill, std::size_t grid_cells_left,
+                          RepairPlan& plan) {
   LocalRepairResult result;
   const auto refuse = [&](const std::string& why) {
     result.why_not = why;
@@ -822,16 +905,30 @@ LocalRepairResult attempt(const Mesh48& original, const ImplicitSurface& surface
 
   // 2. The patch: F's contour within r - h / 2 of the event, so that a strip about an edge
   // wide separates it from the cut's border (which lies beyond r).
-  const double keep = r - 0.5 * h;
-  const auto in_hole = [&](const Vec3& p) { return (p - centre).norm() <= keep; };
   // The grid reaches as far as the patch, not the cut: its triangles are the same (the same
   // lattice, a grid point on the event), and its cost no longer grows with a spreading cut
   // (at the dumbbell's split after motion9 the cut reached 20 mm, a grid of 162^3 cells at the
   // finest spacing; 34^3 now).
-  const std::size_t cells = patch_grid_cells(keep, h);
-  if (cells > grid_cells_left) return refuse(kBudgetSpent);
-  result.grid_cells = cells;
-  const Patch patch = contour_patch(surface, centre, keep, h, in_hole, level);
+  // Or, filling the cut (HoleFill), the contour wherever the cut was, to within half a spacing
+  // of its border, on a grid as wide as the cut: no strip longer than about an edge.
+  Patch patch;
+  if (fill) {
+    const HoleFill hole(mesh, cut, removed, mesh_loops, centre);
+    const std::size_t cells = patch_grid_cells(hole.reach, h);
+    if (cells > grid_cells_left) return refuse(kTooWideToFill);
+    result.grid_cells = cells;
+    const double gap = 0.5 * h;
+    patch = contour_patch(
+        surface, centre, hole.reach, h, [&](const Vec3& p) { return hole.inside(p, gap); }, level);
+  } else {
+    const double keep = r - 0.5 * h;
+    const std::size_t cells = patch_grid_cells(keep, h);
+    if (cells > grid_cells_left) return refuse(kBudgetSpent);
+    result.grid_cells = cells;
+    patch = contour_patch(
+        surface, centre, keep, h, [&](const Vec3& p) { return (p - centre).norm() <= keep; },
+        level);
+  }
   if (patch.loops.size() != mesh_loops.size())
     return refuse("the contour near the event has " + std::to_string(patch.loops.size()) +
                   " border loops, the cut " + std::to_string(mesh_loops.size()));
@@ -1126,14 +1223,17 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
             // Each cut levelled down first (the finer faces cut away), then up (the coarser ones
             // split), unless levelling up would split nothing; then made after the faces near the
             // event are split finer than the cut (refine_near), unless none is coarse: last, so
-            // that where the first two serve (the analytic scenes) nothing changes.
-            for (const int mode : {0, 1, 2}) {
+            // that where the first two serve (the analytic scenes) nothing changes. Then the same
+            // three with the patch filling the cut (HoleFill) instead of the radius: on Colin27
+            // the layer's long faces at the cavity's rim left no cut whose border the patch
+            // within the radius could be joined to.
+            for (const int mode : {0, 1, 2, 3, 4, 5}) {
               if (spent) break;
               RepairPlan plan;
-              const LocalRepairResult r =
-                  attempt(mesh, surface, options.place_split_vertex, level, centre,
-                          grow * options.radius, finer * h, finer * most, ladder.islands, mode == 1,
-                          mode == 2, options.max_grid_cells - cells_used, plan);
+              const LocalRepairResult r = attempt(
+                  mesh, surface, options.place_split_vertex, level, centre, grow * options.radius,
+                  finer * h, finer * most, ladder.islands, mode % 3 == 1, mode % 3 == 2, mode >= 3,
+                  options.max_grid_cells - cells_used, plan);
               cells_used += r.grid_cells;
               if (r.repaired) return carry_out(mesh, surface, options.place_split_vertex, plan, r);
               spent = r.why_not == kBudgetSpent;

@@ -646,6 +646,16 @@ TEST(MriEvents, CliColin27SweptIn4StepsIsEmbeddedAtEveryFrame) {
                                  {0.0, 0.25, 0.5, 0.75, 1.0});
 }
 
+// The same with the sample seed 3: main 0f86ef5 published frame 3 (3 mm) with 77 crossing pairs
+// near (-4..0, -50..-44, -48..-41), the cavity's rim, after every re-mesh attempt failed ("the
+// contour near the event has 1 border loops, the cut 2"), 23 s CPU. The patch filling the whole
+// cut (HoleFill) takes the first rung's cut: every frame embedded, 10 s CPU.
+TEST(MriEvents, CliColin27SweptIn4StepsWithOtherSamplesIsEmbeddedAtEveryFrame) {
+  if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
+  expect_colin27_frames_embedded("mri_colin27_sweep_4_steps_seed_3",
+                                 {"--steps", "4", "--seed", "3"}, {0.0, 0.25, 0.5, 0.75, 1.0});
+}
+
 // Started 4 mm deep: the first mesh is made 0 mm deep, clear of the hole that opens 0.81 mm
 // deep, and carried to 4 mm in 8 steps (mri_start_depth), which meet the rim's folds as the
 // sweeps do. Session 15's code left 19 crossing pairs; integ17-peak ran into the triangle budget
