@@ -1228,7 +1228,7 @@ LocalRepairResult repair_locally(Mesh48& mesh, const ImplicitSurface& surface, c
             // the layer's long faces at the cavity's rim left no cut whose border the patch
             // within the radius could be joined to.
             for (const int mode : {0, 1, 2, 3, 4, 5}) {
-              if (spent) break;
+              if (spent || (mode >= 3 && !options.fill_cut)) break;
               RepairPlan plan;
               const LocalRepairResult r = attempt(
                   mesh, surface, options.place_split_vertex, level, centre, grow * options.radius,

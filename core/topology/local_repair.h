@@ -68,6 +68,11 @@ struct LocalRepairOptions {
   // (TopologyMonitor::clear_level). The attempts at F = L follow those at F = 0, where none of
   // those would do and L is not 0 near the event.
   std::function<double(const Box3& box, double diagonal)> contour_level;
+  // Each rung also tries its cuts with the patch filling the whole cut (HoleFill), after the
+  // three usual modes. For a layer of a distance field, whose faces at a cavity's rim stretch to
+  // 2-7 mm. Off elsewhere: on a surface no mesh can follow (CliHostile's ripple, hundreds of
+  // folds) the fills made each failing ladder dearer, 7 s of CPU before the refusal became 95 s.
+  bool fill_cut = false;
 };
 
 struct LocalRepairResult {
