@@ -25,9 +25,10 @@ namespace {
 // error next to it: dense error 1.11 (T + eps) in the step after the merge).
 // The repair's splits put their vertices where the adapter's tracker will when they are made
 // on the mesh (Tracker::after_split): the repair plans on those positions (local_repair.h).
-LocalRepairOptions local_repair_options(double cell, const SurfaceProbe& probe, bool layer) {
+LocalRepairOptions local_repair_options(const TopologyMonitor& monitor, const SurfaceProbe& probe) {
+  const double cell = monitor.spacing();
   LocalRepairOptions o;
-  o.fill_cut = layer;
+  o.fill_cut = monitor.fixed_points() != nullptr;  // a layer of a distance field
   o.radius = 2.0 * cell;
   o.spacing = 0.5 * cell;
   o.max_spacing = 0.75 * cell;
@@ -108,8 +109,7 @@ void Adapter::note_singular_points() {
 bool Adapter::repair_topology_locally(const TopologyCheck& check) {
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
-  LocalRepairOptions o =
-      local_repair_options(topology_->spacing(), probe_, topology_->fixed_points() != nullptr);
+  LocalRepairOptions o = local_repair_options(*topology_, probe_);
   // An event on a step time (F's critical point zero to within rounding) is repaired at that
   // very instant, where the patch's grid cannot tell the two sides of the critical point apart
   // (local_repair.h): where no patch of F = 0 would do, the patch is contoured off zero, by a
@@ -359,8 +359,7 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
   // radius 0.06: folded again after each of 3 patches at 0.104, and the mesh was rebuilt).
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
-  const LocalRepairOptions o =
-      local_repair_options(topology_->spacing(), probe_, topology_->fixed_points() != nullptr);
+  const LocalRepairOptions o = local_repair_options(*topology_, probe_);
   constexpr int kMostPatches = 4;
   std::vector<Face> folded, slivers;
   std::vector<Vertex> born;

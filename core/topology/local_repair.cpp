@@ -729,12 +729,11 @@ class HoleFill {
         border_.push_back(
             {mesh.position(Vertex(loop[k])), mesh.position(Vertex(loop[(k + 1) % loop.size()]))});
     Box3 box;
-    box.min = box.max = centre;
+    box.extend(centre);
     for (const Face f : removed)
       for (const Vertex v : mesh.vertices(f)) {
         const Vec3& p = mesh.position(v);
-        box.min = box.min.cwiseMin(p);
-        box.max = box.max.cwiseMax(p);
+        box.extend(p);
         reach = std::max(reach, (p - centre).norm());
       }
     // The faces that may be nearest to a point within the cut's box grown by half the margin:

@@ -46,9 +46,8 @@ struct LocalRepairOptions {
   double max_spacing = 0.0;
   // The work bound: the cells of the patches' contour grids, summed over the attempts at one
   // level (each costs one evaluation of F per grid point). An attempt that would pass it is not
-  // made. The
-  // analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at most
-  // (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
+  // made. The analytic scenes' repairs take at most ~40,000 per attempt; a patch's grid has at
+  // most (2 (r / h + 2))^3 cells, r / h at most 24 in the ladder of repair_locally.
   std::size_t max_grid_cells = std::size_t{1} << 22;
   // Where a 4-8 split puts its new vertex, called as a listener's after_split is (the vertex at
   // its parents' midpoint). The attempts split a copy of the mesh that tells no listener and
