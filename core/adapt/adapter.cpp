@@ -703,11 +703,12 @@ void Adapter::weld_pass() {
   // An ambiguous star (its key NaN, its post-weld error `known` in full: ambiguity needs the
   // weld allowed at the range's top, so the reading was below its ceiling) is decided once
   // its skipped faces are measured. Measuring leaves the samples where they were unless a
-  // face's pattern was densified: then the post-weld error is read again.
+  // face's pattern was densified or it kept an interior peak: then the post-weld error is
+  // read again.
   auto decide_measured = [&](const DiamondChange& plan, double known) {
-    const std::uint64_t patterns = samples_.patterns_drawn();
+    const std::uint64_t changes = samples_.sample_changes();
     measure_star(plan);
-    if (samples_.patterns_drawn() != patterns) known = std::numeric_limits<double>::quiet_NaN();
+    if (samples_.sample_changes() != changes) known = std::numeric_limits<double>::quiet_NaN();
     bool ambiguous = false;
     return weld_key(plan, ambiguous, known);
   };

@@ -75,6 +75,54 @@ QuadraticErrorModel::Result QuadraticErrorModel::evaluate() const {
   return {std::max(sample_max_, model_max), true};
 }
 
+bool QuadraticErrorModel::interior_peak(Vec3& at) const {
+  if (count_ < 3) return false;
+  const Eigen::Matrix3d inverse =
+      Eigen::Matrix3d(normal_.selfadjointView<Eigen::Upper>()).inverse();
+  if (!inverse.allFinite()) return false;
+  const Eigen::Matrix3d coefficients = inverse * moment_;
+  if (!vector_) {
+    // The stationary point of scalar_maximum, kept only where it is the maximum.
+    const double a = coefficients(0, 0), b = coefficients(1, 0), c = coefficients(2, 0);
+    const double d = a - b - c, det = 4.0 * b * c - d * d;
+    if (det == 0.0) return false;
+    const double x = (2.0 * b * c + b * d) / det, y = (2.0 * b * c + c * d) / det;
+    if (!(x > 0.0 && y > 0.0 && x + y < 1.0)) return false;
+    const double z = 1.0 - x - y;
+    if (std::abs(a * x * y + b * y * z + c * z * x) <
+        0.25 * std::max({std::abs(a), std::abs(b), std::abs(c)}))
+      return false;
+    at = Vec3(z, x, y);
+    return true;
+  }
+  double best = -1.0;
+  int n = 0, best_i = 0, best_j = 0;
+  for (int i = 0; i <= kLatticeOrder; ++i)
+    for (int j = 0; i + j <= kLatticeOrder; ++j, ++n) {
+      const double v = (coefficients.transpose() * lattice_weights()[n]).squaredNorm();
+      if (v > best) best = v, best_i = i, best_j = j;
+    }
+  if (best_i == 0 || best_j == 0 || best_i + best_j == kLatticeOrder) return false;
+  // Refined around the lattice's best point, twice, on lattices 4 times finer (the lattice's
+  // spacing, 1/8, would leave the point up to 1/16 off the model's peak: a peak narrower than
+  // the face is then measured on its flank).
+  double x = static_cast<double>(best_i) / kLatticeOrder,
+         y = static_cast<double>(best_j) / kLatticeOrder;
+  for (double step = 0.25 / kLatticeOrder; step > 0.01 / kLatticeOrder; step *= 0.25) {
+    const double cx = x, cy = y;
+    for (int i = -4; i <= 4; ++i)
+      for (int j = -4; j <= 4; ++j) {
+        const double u = cx + i * step, v = cy + j * step;
+        if (!(u > 0.0 && v > 0.0 && u + v < 1.0)) continue;
+        const double value =
+            (coefficients.transpose() * edge_weights(Vec3(1.0 - u - v, u, v))).squaredNorm();
+        if (value > best) best = value, x = u, y = v;
+      }
+  }
+  at = Vec3(1.0 - x - y, x, y);
+  return true;
+}
+
 // Largest |a b1 b2 + b b2 b0 + c b0 b1| over the triangle b >= 0, b0 + b1 + b2 = 1. On an edge
 // only one term survives, largest at the midpoint (a / 4, ...); inside, r is a quadratic in
 // (x, y) = (b1, b2) whose stationary point solves

@@ -48,6 +48,14 @@ class QuadraticErrorModel {
     bool resolved = false;
   };
   Result evaluate() const;
+  // Where the fitted model peaks strictly inside the triangle, when it does (else false): the
+  // place to measure again (SampleStore keeps a sample there). Scalar residual: the model's
+  // stationary point, when it lies inside and no edge midpoint reads more (scalar_maximum);
+  // vector residual: the largest of the lattice evaluate() uses (order 8), when that point is
+  // not on an edge, refined on two lattices 4 and 16 times finer around it. A peak on an edge is
+  // the edge peaks' to find (EdgePeak). The model must be resolved (evaluate()), else the location
+  // means nothing.
+  bool interior_peak(Vec3& at) const;
 
  private:
   // The upper triangle of the symmetric sum of w w^T (this runs for every sample).

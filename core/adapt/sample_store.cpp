@@ -109,6 +109,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   model_error_.resize(capacity, 0.0);
   peak_error_.resize(capacity, -1.0);
   edge_slots_.resize(3 * capacity);
+  peak_checked_.resize(capacity, 0);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -166,6 +167,7 @@ void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_
   face_error_[f] = 0.0;
   measured_[f] = 0;
   face_dense_[f] = min_count > 0;
+  peak_checked_[f] = 0;
   const std::uint32_t n = std::max(target_count(mesh, Face(f)), min_count);
   const auto k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   Sample* out = allocate(f, static_cast<std::uint32_t>(k * k));
@@ -196,11 +198,13 @@ void SampleStore::reset(const Mesh48& mesh) {
   measured_.clear();
   model_error_.clear();
   peak_error_.clear();
+  peak_checked_.clear();
   grow_faces(mesh.face_capacity());
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
 
-bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f) {
+bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f, Sample& kept,
+                                bool& kept_one) {
   const auto v = mesh.vertices(f);
   const Vec3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
   const Vec2 uv[3] = {mesh.uv(v[0]), mesh.uv(v[1]), mesh.uv(v[2])};
@@ -225,7 +229,35 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
       model.add(b, r);
     }
   }
-  const QuadraticErrorModel::Result r = model.evaluate();
+  QuadraticErrorModel::Result r = model.evaluate();
+  const bool check = peak_check_due(f, r.error) && r.resolved;
+  if (check) peak_checked_[f.idx] = 1;
+  Vec3 at;
+  if (check && face_count_[f.idx] < kMaxSamplesPerFace && model.interior_peak(at)) {
+    // The candidate as it would be stored (float coordinates) and read again: a later
+    // measurement of the face adds the same residual at the same point, last.
+    Sample x{static_cast<float>(at[1]), static_cast<float>(at[2]), 0.0f};
+    const Vec3 b(1.0 - x.b1 - x.b2, x.b1, x.b2);
+    double error;
+    if (probe.parametric()) {
+      const Vec3 residual = probe.residual_at(p, uv, b);
+      error = residual.norm();
+      if (error > r.error) model.add(b, residual);
+    } else {
+      const double residual =
+          probe.signed_distance_in_triangle(p, b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
+      error = std::abs(residual);
+      if (error > r.error) model.add(b, residual);
+    }
+    // Kept only where the model under-read it: elsewhere it would tell nothing the reading
+    // does not already say.
+    if (error > r.error) {
+      x.error = static_cast<float>(error);
+      kept = x;
+      kept_one = true;
+      r = model.evaluate();
+    }
+  }
   model_error_[f.idx] = r.error;
   const bool search = peak_floor_ > 0.0 && r.error >= search_start_;
   peak_error_[f.idx] = search ? shared_edge_peaks(mesh, probe, f, p, uv) : -1.0;
@@ -352,6 +384,8 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
   while (!pending.empty()) {
     const auto n = static_cast<std::int64_t>(pending.size());
     unresolved.assign(pending.size(), 0);
+    keep_.assign(pending.size(), 0);
+    kept_.resize(pending.size());
 #pragma omp parallel for schedule(dynamic, 256) if (n > kParallelMin)
     for (std::int64_t i = 0; i < n; ++i) {
       // A face's vertices lie anywhere in memory: fetch those of a face a few ahead while
@@ -359,19 +393,38 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
       if (i + kPrefetchAhead < n)
         prefetch_face(mesh, pending[static_cast<std::size_t>(i + kPrefetchAhead)]);
       const Face f = pending[static_cast<std::size_t>(i)];
-      if (mesh.is_alive(f))
-        unresolved[static_cast<std::size_t>(i)] = !evaluate_face(mesh, probe, f);
+      const auto k = static_cast<std::size_t>(i);
+      bool kept = false;
+      if (mesh.is_alive(f)) unresolved[k] = !evaluate_face(mesh, probe, f, kept_[k], kept);
+      keep_[k] = kept;
     }
-    // Densify sequentially (the pool is shared), then measure those faces again.
+    // Keep the interior peaks and densify, sequentially (the pool is shared); then measure the
+    // densified faces again. A face left unresolved with its kept peak is densified: its new
+    // pattern replaces the sample.
     next.clear();
     for (std::size_t i = 0; i < pending.size(); ++i) {
       const Face f = pending[i];
+      if (keep_[i]) append_sample(f.idx, kept_[i]);
       if (!unresolved[i] || face_count_[f.idx] >= kMaxSamplesPerFace) continue;
       draw_pattern(mesh, f.idx, std::min(4 * face_count_[f.idx], kMaxSamplesPerFace));
       next.push_back(f);
     }
     pending.swap(next);
   }
+}
+
+void SampleStore::append_sample(std::uint32_t f, const Sample& x) {
+  const std::uint32_t start = face_start_[f], n = face_count_[f];
+  if (start + n != samples_.size()) {
+    const auto end = static_cast<std::uint32_t>(samples_.size());
+    samples_.resize(samples_.size() + n);
+    std::copy_n(samples_.begin() + start, n, samples_.begin() + end);
+    garbage_ += n;
+    face_start_[f] = end;
+  }
+  samples_.push_back(x);
+  ++face_count_[f];
+  ++peaks_kept_;
 }
 
 void SampleStore::evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe) {
@@ -399,11 +452,23 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
         model.add(pb, probe.residual_at(p, uv, pb));
       });
     }
-    double estimate = model.sample_max() > ceiling ? model.sample_max() : model.estimate();
+    const bool decided = model.sample_max() > ceiling;
+    const QuadraticErrorModel::Result fit =
+        decided ? QuadraticErrorModel::Result{} : model.evaluate();
+    double estimate = decided ? model.sample_max() : fit.error;
     // The same reading the parent would get once welded (evaluate_face): were its edge peak
     // left out here, a weld just below the bound could be split again at once, step after step.
-    if (peak_floor_ > 0.0 && estimate >= search_start_ && estimate <= ceiling)
+    if (peak_floor_ > 0.0 && estimate >= search_start_ && estimate <= ceiling) {
+      // And the interior peak evaluate_face would keep (its reading is then at least that
+      // residual; weld_error does not refit the model with it).
+      Vec3 at;
+      if (fit.resolved && model.interior_peak(at)) {
+        const Vec3 b(1.0 - static_cast<float>(at[1]) - static_cast<float>(at[2]),
+                     static_cast<float>(at[1]), static_cast<float>(at[2]));
+        estimate = std::max(estimate, probe.residual_at(p, uv, b).norm());
+      }
       estimate = peak_reading(estimate, edge_peaks(probe, p, uv));
+    }
     worst = std::max(worst, estimate);
     if (worst > ceiling) return worst;
   }
@@ -491,6 +556,7 @@ void SampleStore::after_split(Mesh48& mesh, const DiamondChange& change) {
     for (std::uint32_t c : {c0, c1}) {
       face_error_[c] = 0.0;
       measured_[c] = 0;
+      peak_checked_[c] = 0;
       if (face_count_[c] < kMinSamplesPerFace) draw_pattern(mesh, c);
     }
   }
@@ -529,6 +595,7 @@ void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
     face_count_[parent] = n0 + n1;
     face_error_[parent] = 0.0;
     measured_[parent] = 0;
+    peak_checked_[parent] = 0;
     if (face_count_[parent] > 2 * target_count(mesh, half.parent)) draw_pattern(mesh, parent);
   }
 }
@@ -542,7 +609,9 @@ void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(measured_, r.face, r.n_faces);
   renumber_elements(model_error_, r.face, r.n_faces);
   renumber_elements(peak_error_, r.face, r.n_faces);
+  renumber_elements(peak_checked_, r.face, r.n_faces);
   unresolved_.clear();  // scratch of one call
+  keep_.clear();
   compact();
 }
 

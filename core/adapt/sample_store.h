@@ -57,6 +57,14 @@ class SampleStore final : public MeshListener {
   // ramped peaks could then be the reading below the floor, 1 elsewhere.
   double reading_gain(Face f, double bound) const;
   double density() const { return density_; }
+  // Whether a measurement of the face reading `reading` would look for its interior peak
+  // (evaluate_faces): once per face, at the first measurement that reads it at or above the
+  // peak search's start, between splits, welds and new patterns. ErrorPredictor measures a
+  // face that could read so: full sampling then looks at the same moment on the same samples,
+  // so that both modes keep the same samples.
+  bool peak_check_due(Face f, double reading) const {
+    return peak_floor_ > 0.0 && reading >= search_start_ && !peak_checked_[f.idx];
+  }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
   // parallel; updates each face's error. A face whose samples the quadratic model cannot
@@ -65,6 +73,17 @@ class SampleStore final : public MeshListener {
   // smooth at the triangle's scale, instead of trusting a sparse maximum there.
   // A call is one pass: the mesh and its positions do not change within it, so an edge
   // shared by two searched faces has its peaks evaluated once (edge_peaks_shared).
+  // A face at or above the peak search's start (set_peak_search) whose fitted model peaks
+  // inside it (QuadraticErrorModel::interior_peak) is also measured there; where the residual
+  // there exceeds the model's reading, the point is kept as one more sample of the face and
+  // the face read with it. This is looked for once per face between splits, welds and new
+  // patterns (peak_check_due), so that it cannot grow a face's samples step after step. The model
+  // assumes the residual quadratic over the face; a crest inside it that the nine stratified
+  // samples straddle breaks that, and the model under-reads it (sinc, T = 0.002: a face of 9
+  // samples read 0.983 (T + eps) where a lattice of order 60 finds 1.137 inside it). Kept as a
+  // sample, the point is read again at every later measurement, follows splits and welds,
+  // counts in weld_error, and its residual's change is what ErrorPredictor's bound covers, as
+  // every sample's is: the reading stays a function of fixed points of the face.
   void evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
                       const std::vector<Face>& faces);
   void evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe);
@@ -84,10 +103,10 @@ class SampleStore final : public MeshListener {
   // `ceiling`, which is all a weld decision needs.
   double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
                     double ceiling = std::numeric_limits<double>::infinity()) const;
-  // How many patterns were drawn so far (draw_pattern is the only place a face's samples get
-  // new barycentric coordinates between splits and welds): unchanged across a measurement,
-  // every face's samples are where they were, and so is every weld_error reading.
-  std::uint64_t patterns_drawn() const { return patterns_drawn_; }
+  // How many times a face's samples changed other than by a split or weld: a pattern drawn,
+  // or a sample kept at a face's interior peak (evaluate_faces). When it is unchanged across a
+  // measurement, every face's samples are where they were, and so is every weld_error reading.
+  std::uint64_t sample_changes() const { return patterns_drawn_ + peaks_kept_; }
   // Draws new patterns for faces whose sample count is below half or above twice
   // max(1, D * area); returns how many faces were redrawn. Their errors need evaluating.
   std::size_t refresh_patterns(const Mesh48& mesh);
@@ -142,8 +161,14 @@ class SampleStore final : public MeshListener {
   void draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count = 0);
   static constexpr std::int64_t kPrefetchAhead = 4;
   void prefetch_face(const Mesh48& mesh, Face f) const;
-  // Measures one face; returns whether its error estimate is resolved.
-  bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f);
+  // Measures one face; returns whether its error estimate is resolved. A sample it keeps at
+  // the face's interior peak is written to `kept` (and `kept_one` set), to be appended to the
+  // face's range by the caller (the pool is shared).
+  bool evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, Face f, Sample& kept,
+                     bool& kept_one);
+  // Appends `x` to the face's samples (its range moves to the end of the pool unless it is
+  // there already).
+  void append_sample(std::uint32_t f, const Sample& x);
   // The largest residual found along the triangle's three edges (EdgePeak).
   static double edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]);
   // The same for the live face f (corners p, uv), each edge found once per pass: an edge's
@@ -164,6 +189,7 @@ class SampleStore final : public MeshListener {
   double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
   std::uint64_t seed_;
   std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
+  std::uint64_t peaks_kept_ = 0;         // samples kept at interior peaks (sample_changes)
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
                                          // (up to kReleaseFactor times the live samples)
   std::size_t garbage_ = 0;              // samples in no face's range
@@ -187,7 +213,10 @@ class SampleStore final : public MeshListener {
   bool share_edge_peaks_ = true;
   bool share_edges_ = false;  // this pass may share them (new_pass)
   std::uint64_t edge_peaks_shared_ = 0;
-  std::vector<std::uint8_t> unresolved_;  // per-face flags (evaluate_faces, refresh_patterns)
+  std::vector<std::uint8_t> peak_checked_;    // peak_check_due: the interior peak was looked for
+  std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
+  std::vector<std::uint8_t> keep_;            // evaluate_faces: a sample to append, per face
+  std::vector<Sample> kept_;                  // and that sample
 };
 
 template <class Fn>
