@@ -569,6 +569,7 @@ void Adapter::tangential_correction() {
 }
 
 void Adapter::sampling() {
+  samples_.set_pattern_epoch(surface_epoch_);
   samples_.refresh_patterns(mesh_);
   if (options_.sampling == Sampling::kFull) {
     measure(mesh_.live_faces());

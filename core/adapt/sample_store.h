@@ -103,6 +103,11 @@ class SampleStore final : public MeshListener {
   // `ceiling`, which is all a weld decision needs.
   double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
                     double ceiling = std::numeric_limits<double>::infinity()) const;
+  // New patterns drawn from now on take their jitter from (seed, epoch, the face's corners'
+  // positions, size) alone, so that two runs making the same changes to the mesh draw the same
+  // patterns whatever else they measured, and whatever the mesh's numbering. The adapter sets it to
+  // the sub-step's number before sampling: a face redrawn in a later sub-step gets new luck.
+  void set_pattern_epoch(std::uint64_t epoch) { epoch_ = epoch; }
   // How many times a face's samples changed other than by a split or weld: a pattern drawn,
   // or a sample kept at a face's interior peak (evaluate_faces). When it is unchanged across a
   // measurement, every face's samples are where they were, and so is every weld_error reading.
@@ -188,7 +193,8 @@ class SampleStore final : public MeshListener {
   double largest_under_reading_ = 0.0;
   double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
   std::uint64_t seed_;
-  std::uint64_t patterns_drawn_ = 0;     // makes every pattern's jitter distinct and reproducible
+  std::uint64_t epoch_ = 0;              // set_pattern_epoch
+  std::uint64_t patterns_drawn_ = 0;     // sample_changes()
   std::uint64_t peaks_kept_ = 0;         // samples kept at interior peaks (sample_changes)
   std::vector<Sample> samples_, spare_;  // spare_: compaction's target, kept for its capacity
                                          // (up to kReleaseFactor times the live samples)
