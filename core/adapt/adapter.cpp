@@ -28,7 +28,8 @@ namespace {
 constexpr double kPeakSearchBand = 0.7;
 
 void set_peak_search(SampleStore& samples, const AdaptOptions& o) {
-  samples.set_peak_search(kPeakSearchBand * (o.threshold + o.epsilon), 1.0 / kPeakSearchBand - 1.0);
+  samples.set_peak_search(kPeakSearchBand * (o.threshold + o.epsilon), 1.0 / kPeakSearchBand - 1.0,
+                          o.threshold + o.epsilon);
 }
 
 class Stopwatch {

@@ -321,7 +321,8 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
         // edges (SampleStore::set_peak_search).
         bound_[k] = residual * samples.reading_gain(f, residual);
         needed = would_split(f, samples.face_error(f) + bound_[k]) ||
-                 samples.peak_check_due(f, samples.face_error(f) + bound_[k]);
+                 samples.peak_check_due(f, samples.face_error(f) - bound_[k],
+                                        samples.face_error(f) + bound_[k]);
       }
       flags_[k] = needed;
     }

@@ -76,9 +76,9 @@
 //   - Stochastic sampling and drift beyond all of the above: a rotating 1/kRotation of all
 //     faces is measured every step, so no face goes unmeasured for more than kRotation steps.
 // Faces whose samples changed (split, weld, new pattern: SampleStore::measured() false) are
-// always measured, and so is a face that could now read at or above the start of the peak
-// search for the first time since its samples changed (SampleStore::peak_check_due): that
-// measurement may keep a sample at its interior peak, and full sampling would keep it then, on
+// always measured, and so is a face that could now read between the start of the peak search
+// and the split bound for the first time since its samples changed (SampleStore::peak_check_due):
+// that measurement may keep a sample at its interior peak, and full sampling would keep it then, on
 // the same samples. (Skipped, the face would keep other samples than with full sampling from
 // then on, and the two modes' meshes part: when a peak was looked for at every such
 // measurement and nothing made prediction measure, sinc at T = 0.002 parted at step 59 of 100

@@ -245,7 +245,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     }
   }
   QuadraticErrorModel::Result r = model.evaluate();
-  const bool check = peak_check_due(f, r.error) && r.resolved;
+  const bool check = peak_check_due(f, r.error, r.error) && r.resolved;
   if (check) peak_checked_[f.idx] = 1;
   Vec3 at;
   if (check && face_count_[f.idx] < kMaxSamplesPerFace && model.interior_peak(at)) {
@@ -281,8 +281,10 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   return r.resolved;
 }
 
-void SampleStore::set_peak_search(double floor, double largest_under_reading) {
+void SampleStore::set_peak_search(double floor, double largest_under_reading,
+                                  double interior_ceiling) {
   peak_floor_ = floor;
+  interior_ceiling_ = interior_ceiling;
   largest_under_reading_ = largest_under_reading;
   // There, a peak under-read by largest_under_reading reads no more than the model.
   search_start_ = floor * kPeakRamp / (largest_under_reading + kPeakRamp);

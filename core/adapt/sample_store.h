@@ -51,19 +51,30 @@ class SampleStore final : public MeshListener {
   // are not searched. So the reading has no jump: it moves by at most reading_gain() times what
   // the model's reading or the peaks move (ErrorPredictor's bound). floor 0 (the default): no
   // search.
-  void set_peak_search(double floor, double largest_under_reading);
+  // `interior_ceiling`: the reading from which a face is split whatever it holds inside (the
+  // split bound, T + eps); its interior peak is looked for only below it (peak_check_due).
+  void set_peak_search(double floor, double largest_under_reading,
+                       double interior_ceiling = std::numeric_limits<double>::infinity());
   // The most the face's reading can move, per unit of movement of its model reading and its
   // edge peaks, while both stay within `bound` of their last values: 1 + kPeakRamp where the
   // ramped peaks could then be the reading below the floor, 1 elsewhere.
   double reading_gain(Face f, double bound) const;
   double density() const { return density_; }
-  // Whether a measurement of the face reading `reading` would look for its interior peak
-  // (evaluate_faces): once per face, at the first measurement that reads it at or above the
-  // peak search's start, between splits, welds and new patterns. ErrorPredictor measures a
-  // face that could read so: full sampling then looks at the same moment on the same samples,
-  // so that both modes keep the same samples.
-  bool peak_check_due(Face f, double reading) const {
-    return peak_floor_ > 0.0 && reading >= search_start_ && !peak_checked_[f.idx];
+  // Whether a measurement of the face reading anywhere in [lo, hi] could look for its interior
+  // peak (evaluate_faces): once per face, at the first measurement that reads it at or above
+  // the peak search's start and below the interior ceiling (set_peak_search), between splits,
+  // welds and new patterns. ErrorPredictor measures a face that could read so: full sampling
+  // then looks at the same moment on the same samples, so that both modes keep the same
+  // samples. Above the ceiling the face is split whatever it holds inside, and a peak kept
+  // there changes no decision; it only raised the readings of faces spanning a gap in F
+  // (the mesh's topology not F's) over their ancestors', and the split pass's stall bound
+  // (Adapter::split_pass), which holds faces whose error does not fall, restarted its count
+  // at each rise: the dumbbell split, unwatched, held its splits only at depth 16 and ran into
+  // the 5,000-triangle budget in step 3 (229 such restarts in that pass); with the ceiling 38
+  // restarts, held at depth 10, 1,426 triangles.
+  bool peak_check_due(Face f, double lo, double hi) const {
+    return peak_floor_ > 0.0 && hi >= search_start_ && lo < interior_ceiling_ &&
+           !peak_checked_[f.idx];
   }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
@@ -192,6 +203,7 @@ class SampleStore final : public MeshListener {
   double peak_floor_ = 0.0;
   double largest_under_reading_ = 0.0;
   double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
+  double interior_ceiling_ = std::numeric_limits<double>::infinity();  // (peak_check_due)
   std::uint64_t seed_;
   std::uint64_t epoch_ = 0;              // set_pattern_epoch
   std::uint64_t patterns_drawn_ = 0;     // sample_changes()
@@ -219,10 +231,10 @@ class SampleStore final : public MeshListener {
   bool share_edge_peaks_ = true;
   bool share_edges_ = false;  // this pass may share them (new_pass)
   std::uint64_t edge_peaks_shared_ = 0;
-  std::vector<std::uint8_t> peak_checked_;    // peak_check_due: the interior peak was looked for
-  std::vector<std::uint8_t> unresolved_;      // per-face flags (evaluate_faces, refresh_patterns)
-  std::vector<std::uint8_t> keep_;            // evaluate_faces: a sample to append, per face
-  std::vector<Sample> kept_;                  // and that sample
+  std::vector<std::uint8_t> peak_checked_;  // peak_check_due: the interior peak was looked for
+  std::vector<std::uint8_t> unresolved_;    // per-face flags (evaluate_faces, refresh_patterns)
+  std::vector<std::uint8_t> keep_;          // evaluate_faces: a sample to append, per face
+  std::vector<Sample> kept_;                // and that sample
 };
 
 template <class Fn>
