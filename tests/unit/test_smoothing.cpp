@@ -156,8 +156,9 @@ struct RidgeFigures {
 // Band: vertices whose parameter radius is within `band` of a crest. Crest error: points of
 // the mesh above each crest circle (every 0.5 degree, inside the square), located in (u, v)
 // and measured with the dense module's distance (SCENES.md's parametric error).
-RidgeFigures ridge_figures(double k, double band) {
+RidgeFigures ridge_figures(double k, double band, std::uint64_t seed) {
   AdaptOptions o;
+  o.seed = seed;
   o.smoothing.k = k;
   o.smoothing.scale_invariant_weights = false;  // the paper's centroid, as in compare()
   test::SceneRun run = test::start_scene("sinc", o);
@@ -202,23 +203,36 @@ RidgeFigures ridge_figures(double k, double band) {
   return r;
 }
 
-// Measured (T = 0.008, band 0.01, uniform centroid): 65 vertices in the band with k = 20 vs
-// 58 with k = 0; mean crest error 0.00353 vs 0.00380 with 1526 vs 1638 triangles. With the
-// default Fujiwara weights the crest error drops too (mean 0.00296 vs 0.00365, 1356 vs 1638
-// triangles) but the band holds fewer vertices (50 vs 64; 7.2% vs 7.7% of them): those
-// weights already keep the grading, and k = 20 there mostly saves triangles. The largest crest
-// error is not asserted: both meshes are refined until every face is within T + eps, so the worst
-// crest point is set by the refinement, not by where vertices sit (measured 0.00932 vs
-// 0.00849, both below T).
+// Measured with seed 1 and numbered sample patterns (T = 0.008, band 0.01, uniform centroid):
+// 65 vertices in the band with k = 20 vs 58 with k = 0; mean crest error 0.00353 vs 0.00380 with
+// 1526 vs 1638 triangles. With the default Fujiwara weights the crest error drops too (mean
+// 0.00296 vs 0.00365, 1356 vs 1638 triangles) but the band holds fewer vertices (50 vs 64; 7.2%
+// vs 7.7% of them): those weights already keep the grading, and k = 20 there mostly saves
+// triangles. The largest crest error is not asserted: both meshes are refined until every face is
+// within T + eps, so the worst crest point is set by the refinement, not by where vertices sit
+// (measured 0.00932 vs 0.00849, both below T).
+// The band count of one sample draw is a few vertices either way of the effect: with the
+// position-keyed patterns seed 1 ties (66 vs 66), and over seeds 1-16 stiff smoothing holds more
+// band vertices 13 times, fewer twice (session 17). So the counts and crest errors are summed
+// over four draws (keyed patterns: 268 vs 254 band vertices).
 TEST(Smoothing, LargeStiffnessKeepsVerticesOnRidges) {
   EXPECT_EQ(sinc_crests(4 * M_PI, -0.5).size(), 5u);  // crests at r ~ 0.36, 0.61, 0.86, ...
   const double band = 0.01;  // parameter units; crest spacing is pi / beta = 0.25
-  const RidgeFigures stiff = ridge_figures(20.0, band), plain = ridge_figures(0.0, band);
-  std::printf(
-      "sinc t=0.25 band %.3f: vertices in band %zu (k=20) vs %zu (k=0); crest error max %.5f "
-      "vs %.5f, mean %.5f vs %.5f; triangles %zu vs %zu\n",
-      band, stiff.band_vertices, plain.band_vertices, stiff.crest_error_max, plain.crest_error_max,
-      stiff.crest_error_mean, plain.crest_error_mean, stiff.triangles, plain.triangles);
+  RidgeFigures stiff, plain;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const RidgeFigures s = ridge_figures(20.0, band, seed), p = ridge_figures(0.0, band, seed);
+    std::printf(
+        "sinc t=0.25 seed %d band %.3f: vertices in band %zu (k=20) vs %zu (k=0); crest error "
+        "max %.5f vs %.5f, mean %.5f vs %.5f; triangles %zu vs %zu\n",
+        static_cast<int>(seed), band, s.band_vertices, p.band_vertices, s.crest_error_max,
+        p.crest_error_max, s.crest_error_mean, p.crest_error_mean, s.triangles, p.triangles);
+    for (auto [sum, one] : {std::pair{&stiff, &s}, std::pair{&plain, &p}}) {
+      sum->band_vertices += one->band_vertices;
+      sum->triangles += one->triangles;
+      sum->crest_error_mean += one->crest_error_mean / 4;
+      sum->crest_error_max = std::max(sum->crest_error_max, one->crest_error_max);
+    }
+  }
   EXPECT_GT(stiff.band_vertices, plain.band_vertices);
   EXPECT_LT(stiff.crest_error_mean, plain.crest_error_mean);
   EXPECT_LE(stiff.triangles, plain.triangles);  // and not by spending more triangles
