@@ -109,11 +109,9 @@ LocalRepairResult add_born_component(Mesh48& mesh, const ImplicitSurface& surfac
   }
   ContourMesh contour = marching_tetrahedra(grid, values, kMargin);
   for (const Vec3& p : contour.positions) extent.extend(p);
-  extent.min -= Vec3::Constant(h);
-  extent.max += Vec3::Constant(h);
+  extent = extent.grown(h);
   for (const Vertex v : mesh.live_vertices()) {
-    const Vec3& p = mesh.position(v);
-    if ((p.array() >= extent.min.array()).all() && (p.array() <= extent.max.array()).all())
+    if (extent.contains(mesh.position(v)))
       return refused("birth: the mesh already has a vertex where the new component is");
   }
   const MeshTopologySummary shape = summarize_topology(contour.triangles, contour.positions.size());

@@ -9,10 +9,6 @@ namespace dynamesh {
 
 namespace {
 
-bool contains(const Box3& box, const Vec3& p) {
-  return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
-}
-
 bool changes_sign(const std::size_t corner[8], const std::vector<Vec3>& gradients, int axis) {
   bool negative = false, positive = false;
   for (int c = 0; c < 8; ++c) {
@@ -37,7 +33,7 @@ bool refine_critical_point(const FieldJet& evaluate, const Vec3& start, const Bo
     const Vec3 step =
         eigen.eigenvectors() * (eigen.eigenvectors().transpose() * g).cwiseQuotient(lambda);
     x -= step;
-    if (!contains(region, x) || !x.allFinite()) return false;
+    if (!region.contains(x) || !x.allFinite()) return false;
     if (step.norm() < tolerance) {
       out.position = x;
       out.value = evaluate(x, g, h);
@@ -103,7 +99,7 @@ std::vector<CriticalPoint> find_critical_points(const ImplicitSurface& surface,
         region.extend(Vec3(centre + 1.5 * h));
         CriticalPoint cp;
         if (!refine_critical_point(jet, centre, region, tolerance, cp)) continue;
-        if (std::abs(cp.value) > max_abs_value || !contains(grid.box, cp.position)) continue;
+        if (std::abs(cp.value) > max_abs_value || !grid.box.contains(cp.position)) continue;
         bool duplicate = false;
         for (const CriticalPoint& other : found)
           duplicate = duplicate || (other.position - cp.position).norm() < 0.25 * h.minCoeff();

@@ -740,15 +740,12 @@ class HoleFill {
     // the cut's, and the remaining ones whose boxes reach into the box grown by the margin
     // (any other lies farther than half the margin from such a point).
     margin_ = 0.25 * reach;
-    const Vec3 margin = Vec3::Constant(margin_);
-    box_.min = box.min - 0.5 * margin;
-    box_.max = box.max + 0.5 * margin;
+    box_ = box.grown(0.5 * margin_);
+    const Box3 near = box.grown(margin_);
     for (const Face f : mesh.live_faces()) {
       const auto v = mesh.vertices(f);
       const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
-      const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
-      if (!cut[f.idx] &&
-          ((lo - box.max - margin).maxCoeff() > 0 || (box.min - margin - hi).maxCoeff() > 0))
+      if (!cut[f.idx] && !Box3{a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)}.overlaps(near))
         continue;
       faces_.push_back({a, b, c, cut[f.idx] != 0});
     }
@@ -768,7 +765,7 @@ class HoleFill {
 };
 
 bool HoleFill::inside(const Vec3& p, double gap) const {
-  if ((p - box_.max).maxCoeff() > 0 || (box_.min - p).maxCoeff() > 0) return false;
+  if (!box_.contains(p)) return false;
   for (const auto& [a, b] : border_) {
     const Vec3 ab = b - a;
     const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);

@@ -176,9 +176,7 @@ std::optional<double> TopologyMonitor::clear_level(double diagonal, double fract
   // where it is inside.
   double lo = -HUGE_VAL, hi = HUGE_VAL;
   for (const CriticalPoint& cp : previous_) {
-    if (within && ((cp.position.array() < within->min.array()).any() ||
-                   (cp.position.array() > within->max.array()).any()))
-      continue;
+    if (within && !within->contains(cp.position)) continue;
     const double margin = fraction * 0.5 * cp.curvature * diagonal * diagonal;
     if (inside(cp, diagonal_))
       lo = std::max(lo, cp.value + margin);

@@ -36,7 +36,7 @@ std::shared_ptr<const LabelAtlas> load_atlas(const std::filesystem::path& path,
     throw std::invalid_argument(std::string("mri: --atlas: ") + e.what());
   }
   const Box3 a = atlas->labels.grid.world_bounds(), b = surface.layers().mask_bounds();
-  if ((a.max.array() < b.min.array()).any() || (b.max.array() < a.min.array()).any())
+  if (!a.overlaps(b))
     throw std::invalid_argument("mri: --atlas " + path.string() +
                                 " does not overlap the brain (a label volume in another space?)");
   return atlas;

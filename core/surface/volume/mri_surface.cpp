@@ -91,10 +91,7 @@ double MriSurface::point_quantity(const std::string& name, const Vec3& p) const 
 }
 
 Box3 MriSurface::bounds() const {
-  Box3 box = layers_.mask_bounds();
-  box.min -= Vec3::Constant(kBoundsMargin);
-  box.max += Vec3::Constant(kBoundsMargin);
-  return box;
+  return layers_.mask_bounds().grown(kBoundsMargin);
 }
 
 Mat3 MriSurface::hessian(const Vec3& p) const {
