@@ -324,6 +324,9 @@ std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Fa
   return centre_of([&](Face f) { return f == folded.front(); });
 }
 
+// Patches of folds per re-mesh (Adapter::remesh_folds_locally).
+constexpr int kMostPatches = 4;
+
 // Whether more than `most` of the folded faces lie pairwise farther apart than `apart` (their
 // corner means, taken greedily in screen order): then no `most` patches, each reaching less
 // than half of `apart` from its centre, can cut them all.
@@ -378,7 +381,6 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
   const LocalRepairOptions o = local_repair_options(*topology_, probe_);
-  constexpr int kMostPatches = 4;
   std::vector<Face> folded, slivers;
   std::vector<Vertex> born;
   std::vector<Vec3> centres;
@@ -492,6 +494,23 @@ bool Adapter::rebuild_if_folded() {
     return changed;
   }
   rebuild_from_base(now.euler, now.components);
+  // A re-based mesh refined into folds in more places than a re-mesh patches is where it was
+  // before: the next sub-step re-meshes nothing and re-bases again, and so on. Refused, as a
+  // contour that folds is (check_orientation): F has features finer than the mesh can follow.
+  // CliHostile's ripple: each re-base, refined, had 822-1,675 faces folded all over the sphere,
+  // and 7 re-bases (one per sub-step, 6 s of CPU) came before the contour itself folded.
+  std::vector<Face>& turned = bad_faces_[0];
+  std::vector<Face>& slivers = bad_faces_[1];
+  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, turned, slivers,
+                 &fold_screen_);
+  if (folds_farther_apart(mesh_, turned, 3.0 * local_repair_options(*topology_, probe_).radius,
+                          kMostPatches))
+    throw std::invalid_argument(
+        surface_.name() + ": at t=" + std::to_string(surface_.time()) +
+        " the mesh re-based from F's contour folds over where it is refined (" +
+        std::to_string(turned.size()) + " faces turned over, in more than " +
+        std::to_string(kMostPatches) +
+        " places): F has features finer than the mesh can follow there");
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;
