@@ -767,7 +767,10 @@ class HoleFill {
       if (!cut[f.idx] &&
           ((lo - box.max - margin).maxCoeff() > 0 || (box.min - margin - hi).maxCoeff() > 0))
         continue;
-      faces_.push_back({a, b, c, cut[f.idx] != 0});
+      const Vec3 mid = (a + b + c) / 3.0;
+      const double r = std::sqrt(
+          std::max({(a - mid).squaredNorm(), (b - mid).squaredNorm(), (c - mid).squaredNorm()}));
+      faces_.push_back({a, b, c, mid, r, cut[f.idx] != 0});
     }
   }
   bool inside(const Vec3& p, double gap) const;
@@ -776,12 +779,15 @@ class HoleFill {
  private:
   struct Tri {
     Vec3 a, b, c;
+    Vec3 mid;       // its corners' mean,
+    double radius;  // and their largest distance from it: a ball holding the face
     bool cut;
   };
   std::vector<std::pair<Vec3, Vec3>> border_;
   std::vector<Tri> faces_;
   Box3 box_;
   double margin_ = 0.0;
+  mutable std::size_t last_nearest_ = 0;  // the previous point's nearest face (a hint)
 };
 
 bool HoleFill::inside(const Vec3& p, double gap) const {
@@ -791,11 +797,21 @@ bool HoleFill::inside(const Vec3& p, double gap) const {
     const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
     if ((a + t * ab - p).squaredNorm() < gap * gap) return false;
   }
+  // The first nearest face in faces_' order, as a plain search over every face finds it; a face
+  // whose ball lies farther than the previous point's nearest face (the contour's points come
+  // in order along the grid, so it is near) cannot be nearer and is passed over. On Colin27 the
+  // search was a fifth of a run's CPU, in the failed repairs of a layer's rim.
+  if (faces_.empty()) return false;
+  const Tri& hint = faces_[std::min(last_nearest_, faces_.size() - 1)];
+  // With a margin for rounding: a face is passed over only when it is clearly farther.
+  const double bound = 1.000001 * (nearest_on_triangle(p, hint.a, hint.b, hint.c) - p).norm();
   double nearest = HUGE_VAL;
   bool in_cut = false;
-  for (const Tri& f : faces_) {
+  for (std::size_t k = 0; k < faces_.size(); ++k) {
+    const Tri& f = faces_[k];
+    if ((f.mid - p).norm() - f.radius > bound) continue;
     const double d = (nearest_on_triangle(p, f.a, f.b, f.c) - p).squaredNorm();
-    if (d < nearest) nearest = d, in_cut = f.cut;
+    if (d < nearest) nearest = d, in_cut = f.cut, last_nearest_ = k;
   }
   // Farther than half the margin from every listed face, a face not listed may be nearer; and
   // such a point of F is not on the mesh's sheet there anyway.
