@@ -324,6 +324,27 @@ std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Fa
   return centre_of([&](Face f) { return f == folded.front(); });
 }
 
+// Patches of folds per re-mesh (Adapter::remesh_folds_locally).
+constexpr int kMostPatches = 4;
+
+// Whether more than `most` of the folded faces lie pairwise farther apart than `apart` (their
+// corner means, taken greedily in screen order): then no `most` patches, each reaching less
+// than half of `apart` from its centre, can cut them all.
+bool folds_farther_apart(const Mesh48& mesh, const std::vector<Face>& folded, double apart,
+                         int most) {
+  std::vector<Vec3> seeds;
+  for (const Face f : folded) {
+    Vec3 c = Vec3::Zero();
+    for (const Vertex v : mesh.vertices(f)) c += mesh.position(v);
+    c /= 3.0;
+    if (std::none_of(seeds.begin(), seeds.end(),
+                     [&](const Vec3& s) { return (s - c).norm() <= apart; }))
+      seeds.push_back(c);
+    if (seeds.size() > static_cast<std::size_t>(most)) return true;
+  }
+  return false;
+}
+
 // The saddle of F (Morse index 1 or 2: a neck's or a hole's centre) nearest to `centre` within
 // `reach`, if any.
 std::optional<Vec3> nearest_saddle(const std::vector<CriticalPoint>& points, const Vec3& centre,
@@ -360,7 +381,6 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
   if (!options_.local_topology_repair) return false;
   const auto& implicit = dynamic_cast<const ImplicitSurface&>(surface_);
   const LocalRepairOptions o = local_repair_options(*topology_, probe_);
-  constexpr int kMostPatches = 4;
   std::vector<Face> folded, slivers;
   std::vector<Vertex> born;
   std::vector<Vec3> centres;
@@ -389,6 +409,16 @@ bool Adapter::remesh_folds_locally(const MeshTopologySummary& topology, bool& ch
     if (patch == kMostPatches)
       return give_up(std::to_string(folded.size()) + " face(s) still folded after " +
                      std::to_string(kMostPatches) + " patches");
+    // Folds all over the mesh (a surface no mesh can follow) need more patches than are left:
+    // each attempt failed anyway. CliHostile's ripple, where a re-based mesh showed 593-1,297
+    // folded faces in the next sub-step: a failed repair_locally of 11-16 s each, until the
+    // re-base was refused, 3.5 minutes (refused in 5 s before with other sample draws). A patch
+    // cuts within 1.5 radii of its centre (the ladder's widest cut) before its border is
+    // levelled, so folds 3 radii apart need a patch each.
+    if (folds_farther_apart(mesh_, folded, 3.0 * o.radius, kMostPatches - patch))
+      return give_up(std::to_string(folded.size()) + " folded faces lie in more than " +
+                     std::to_string(kMostPatches - patch) +
+                     " places farther apart than a patch reaches");
     const std::optional<Vec3> cluster = fold_cluster_centre(mesh_, folded, 0.5 * o.radius);
     if (!cluster)
       return give_up(std::to_string(folded.size()) + " folded faces spread wider than a patch");
@@ -464,6 +494,24 @@ bool Adapter::rebuild_if_folded() {
     return changed;
   }
   rebuild_from_base(now.euler, now.components);
+  // A re-based mesh refined into folds in more places than a re-mesh patches is where it was
+  // before: the next sub-step re-meshes nothing and re-bases again, and so on. Refused, as a
+  // contour that folds is (check_orientation): F has features finer than the mesh can follow.
+  // CliHostile's ripple: each re-base, refined, had 822-1,675 faces folded all over the sphere,
+  // and 6 re-bases, one per sub-step, came before the contour itself folded at the 7th (10.5 s
+  // of CPU in all; refused at the first, 1.0 s).
+  std::vector<Face>& turned = bad_faces_[0];
+  std::vector<Face>& slivers = bad_faces_[1];
+  find_bad_faces(mesh_, surface_, options_.fold_repair.min_angle_deg, turned, slivers,
+                 &fold_screen_);
+  if (folds_farther_apart(mesh_, turned, 3.0 * local_repair_options(*topology_, probe_).radius,
+                          kMostPatches))
+    throw std::invalid_argument(
+        surface_.name() + ": at t=" + std::to_string(surface_.time()) +
+        " the mesh re-based from F's contour folds over where it is refined (" +
+        std::to_string(turned.size()) + " faces turned over, in more than " +
+        std::to_string(kMostPatches) +
+        " places): F has features finer than the mesh can follow there");
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;

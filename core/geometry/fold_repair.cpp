@@ -58,8 +58,8 @@ double sin2_floor(double min_angle_deg) {
   return s * s;
 }
 
-// Folded against the surface: the face's normal points away from the surface normal at one
-// of its corners.
+}  // namespace
+
 bool folded_against_surface(const Mesh48& mesh, const Surface& surface, Face f) {
   const Vec3 n = face_normal(mesh, f);
   if (!(n.squaredNorm() > 0)) return true;  // degenerate: no orientation at all
@@ -67,6 +67,8 @@ bool folded_against_surface(const Mesh48& mesh, const Surface& surface, Face f) 
     if (n.dot(surface_normal_at(surface, mesh, v)) <= 0) return true;
   return false;
 }
+
+namespace {
 
 // The surface normals at the corners of a vertex's star, each vertex once: the ring's are
 // taken when the star is made and kept while only the centre moves (relax_vertex's trial moves),

@@ -65,6 +65,10 @@ struct FoldScreenBuffers {
   std::vector<Face> ring;  // one vertex's faces, in face order
 };
 
+// Whether face f is folded (above): its normal points away from the surface normal at one of
+// its corners (or it has none).
+bool folded_against_surface(const Mesh48& mesh, const Surface& surface, Face f);
+
 // Faces that are folded (`folded`) or slivers (`slivers`), checked as described above.
 // `buffers`: scratch kept between calls (none: allocated for this call); same verdicts.
 void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle_deg,
