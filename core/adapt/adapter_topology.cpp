@@ -511,7 +511,9 @@ bool Adapter::rebuild_if_folded() {
         " the mesh re-based from F's contour folds over where it is refined (" +
         std::to_string(turned.size()) + " faces turned over, in more than " +
         std::to_string(kMostPatches) +
-        " places): F has features finer than the mesh can follow there");
+        " places): F has features finer than the contour's grid there; give --base-mesh FILE "
+        "fine enough to follow them, or tighter --bounds (the grid's spacing is a 24th of their "
+        "longest side)");
   topology_->mesh_rebuilt(mesh_);
   stats_.rebuilt = true;
   stats_.folds_repaired += folded;
