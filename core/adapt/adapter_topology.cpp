@@ -290,6 +290,13 @@ Mesh48 Adapter::mid_run_base_mesh(long euler, long components) {
 
 namespace {
 
+// Where a fold is, for grouping folds into patches.
+Vec3 face_corner_mean(const Mesh48& mesh, Face f) {
+  Vec3 c = Vec3::Zero();
+  for (const Vertex v : mesh.vertices(f)) c += mesh.position(v);
+  return c / 3.0;
+}
+
 // Where to re-mesh the folds: the mean of all their corners when every corner lies within
 // `reach` of it (one patch for them all); else the mean of the corners of the folds near the
 // first one (within `reach` of its corners' mean) when those lie within `reach` of it; else
@@ -299,16 +306,11 @@ namespace {
 // rebuilt); else nothing (folds spread too widely for patches).
 std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Face>& folded,
                                         double reach) {
-  const auto corner_mean = [&](Face f) {
-    Vec3 c = Vec3::Zero();
-    for (const Vertex v : mesh.vertices(f)) c += mesh.position(v);
-    return Vec3(c / 3.0);
-  };
   const auto centre_of = [&](auto&& member) -> std::optional<Vec3> {
     Vec3 centre = Vec3::Zero();
     std::size_t faces = 0;
     for (const Face f : folded)
-      if (member(f)) centre += corner_mean(f), ++faces;
+      if (member(f)) centre += face_corner_mean(mesh, f), ++faces;
     centre /= static_cast<double>(faces);
     for (const Face f : folded)
       if (member(f))
@@ -317,8 +319,9 @@ std::optional<Vec3> fold_cluster_centre(const Mesh48& mesh, const std::vector<Fa
     return centre;
   };
   if (const auto all = centre_of([](Face) { return true; })) return all;
-  const Vec3 seed = corner_mean(folded.front());
-  if (const auto near = centre_of([&](Face f) { return (corner_mean(f) - seed).norm() <= reach; }))
+  const Vec3 seed = face_corner_mean(mesh, folded.front());
+  if (const auto near =
+          centre_of([&](Face f) { return (face_corner_mean(mesh, f) - seed).norm() <= reach; }))
     return near;
   reach *= 2.0;
   return centre_of([&](Face f) { return f == folded.front(); });
@@ -334,9 +337,7 @@ bool folds_farther_apart(const Mesh48& mesh, const std::vector<Face>& folded, do
                          int most) {
   std::vector<Vec3> seeds;
   for (const Face f : folded) {
-    Vec3 c = Vec3::Zero();
-    for (const Vertex v : mesh.vertices(f)) c += mesh.position(v);
-    c /= 3.0;
+    const Vec3 c = face_corner_mean(mesh, f);
     if (std::none_of(seeds.begin(), seeds.end(),
                      [&](const Vec3& s) { return (s - c).norm() <= apart; }))
       seeds.push_back(c);

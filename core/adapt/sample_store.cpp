@@ -228,7 +228,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   Sample* const last = first + face_count_[f.idx];
   if (probe.parametric()) {
     for (Sample* x = first; x != last; ++x) {
-      const Vec3 b(1.0 - x->b1 - x->b2, x->b1, x->b2);
+      const Vec3 b = x->barycentric();
       const Vec3 r = probe.residual_at(p, uv, b);
       x->error = static_cast<float>(r.norm());
       model.add(b, r);
@@ -237,7 +237,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     // The common implicit case without the vector residual's detour (one evaluation and
     // one square root per sample).
     for (Sample* x = first; x != last; ++x) {
-      const Vec3 b(1.0 - x->b1 - x->b2, x->b1, x->b2);
+      const Vec3 b = x->barycentric();
       const double r =
           probe.signed_distance_in_triangle(p, b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
       x->error = static_cast<float>(std::abs(r));
@@ -251,8 +251,8 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   if (check && face_count_[f.idx] < kMaxSamplesPerFace && model.interior_peak(at)) {
     // The candidate as it would be stored (float coordinates) and read again: a later
     // measurement of the face adds the same residual at the same point, last.
-    Sample x{static_cast<float>(at[1]), static_cast<float>(at[2]), 0.0f};
-    const Vec3 b(1.0 - x.b1 - x.b2, x.b1, x.b2);
+    Sample x = Sample::at(at);
+    const Vec3 b = x.barycentric();
     double error;
     if (probe.parametric()) {
       const Vec3 residual = probe.residual_at(p, uv, b);
@@ -480,9 +480,8 @@ double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
       // residual; weld_error does not refit the model with it).
       Vec3 at;
       if (fit.resolved && model.interior_peak(at)) {
-        const Vec3 b(1.0 - static_cast<float>(at[1]) - static_cast<float>(at[2]),
-                     static_cast<float>(at[1]), static_cast<float>(at[2]));
-        estimate = std::max(estimate, probe.residual_at(p, uv, b).norm());
+        estimate =
+            std::max(estimate, probe.residual_at(p, uv, Sample::at(at).barycentric()).norm());
       }
       estimate = peak_reading(estimate, edge_peaks(probe, p, uv));
     }

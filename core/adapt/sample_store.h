@@ -166,6 +166,12 @@ class SampleStore final : public MeshListener {
   struct Sample {
     float b1, b2;  // barycentric coordinates of vertices 1 and 2; b0 = 1 - b1 - b2
     float error;
+    // The sample at barycentric point b, its coordinates rounded as stored (error 0).
+    static Sample at(const Vec3& b) {
+      return {static_cast<float>(b[1]), static_cast<float>(b[2]), 0.0f};
+    }
+    // The point it is read at, from the stored coordinates.
+    Vec3 barycentric() const { return {1.0 - b1 - b2, b1, b2}; }
   };
 
   void grow_faces(std::size_t capacity);
@@ -241,7 +247,7 @@ template <class Fn>
 void SampleStore::for_each_sample(Face f, Fn&& fn) const {
   const Sample* x = samples_.data() + face_start_[f.idx];
   for (std::uint32_t i = 0; i < face_count_[f.idx]; ++i)
-    fn(Vec3(1.0 - x[i].b1 - x[i].b2, x[i].b1, x[i].b2), static_cast<double>(x[i].error));
+    fn(x[i].barycentric(), static_cast<double>(x[i].error));
 }
 
 }  // namespace dynamesh
