@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/geometry/nearest_triangle.h"
 #include "core/surface/projection.h"
 #include "core/topology/marching_tetrahedra.h"
 #include "core/topology/triangle_pairing.h"
@@ -662,28 +663,6 @@ double patch_spacing(const Mesh48& mesh, const std::vector<Loop>& loops,
                     std::max(finest, coarsest));
 }
 
-// The point of the triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5).
-Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // Splits (on the attempt's copy) every face that reaches within r of the event and has an edge
 // longer than half of r, until none has. Where the mesh near the event is coarse against the
 // cut (a brain layer's faces are up to 10 mm across where it is flat, the cut's radius 4 mm),
@@ -759,32 +738,26 @@ class HoleFill {
     margin_ = 0.25 * reach;
     box_ = box.grown(0.5 * margin_);
     const Box3 near = box.grown(margin_);
+    std::vector<std::array<Vec3, 3>> faces;
     for (const Face f : mesh.live_faces()) {
       const auto v = mesh.vertices(f);
       const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
       if (!cut[f.idx] && !Box3{a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)}.overlaps(near))
         continue;
-      const Vec3 mid = (a + b + c) / 3.0;
-      const double r = std::sqrt(
-          std::max({(a - mid).squaredNorm(), (b - mid).squaredNorm(), (c - mid).squaredNorm()}));
-      faces_.push_back({a, b, c, mid, r, cut[f.idx] != 0});
+      faces.push_back({a, b, c});
+      in_cut_.push_back(cut[f.idx] != 0);
     }
+    nearest_ = NearestTriangleIndex(std::move(faces));
   }
   bool inside(const Vec3& p, double gap) const;
   double reach = 0.0;  // of the cut's vertices from the event
 
  private:
-  struct Tri {
-    Vec3 a, b, c;
-    Vec3 mid;       // its corners' mean,
-    double radius;  // and their largest distance from it: a ball holding the face
-    bool cut;
-  };
   std::vector<std::pair<Vec3, Vec3>> border_;
-  std::vector<Tri> faces_;
+  NearestTriangleIndex nearest_;  // the listed faces,
+  std::vector<char> in_cut_;      // and whether each is a cut one
   Box3 box_;
   double margin_ = 0.0;
-  mutable std::size_t last_nearest_ = 0;  // the previous point's nearest face (a hint)
 };
 
 bool HoleFill::inside(const Vec3& p, double gap) const {
@@ -794,25 +767,12 @@ bool HoleFill::inside(const Vec3& p, double gap) const {
     const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
     if ((a + t * ab - p).squaredNorm() < gap * gap) return false;
   }
-  // The first nearest face in faces_' order, as a plain search over every face finds it; a face
-  // whose ball lies farther than the previous point's nearest face (the contour's points come
-  // in order along the grid, so it is near) cannot be nearer and is passed over. On Colin27 the
-  // search was a fifth of a run's CPU, in the failed repairs of a layer's rim.
-  if (faces_.empty()) return false;
-  const Tri& hint = faces_[std::min(last_nearest_, faces_.size() - 1)];
-  // With a margin for rounding: a face is passed over only when it is clearly farther.
-  const double bound = 1.000001 * (nearest_on_triangle(p, hint.a, hint.b, hint.c) - p).norm();
-  double nearest = HUGE_VAL;
-  bool in_cut = false;
-  for (std::size_t k = 0; k < faces_.size(); ++k) {
-    const Tri& f = faces_[k];
-    if ((f.mid - p).norm() - f.radius > bound) continue;
-    const double d = (nearest_on_triangle(p, f.a, f.b, f.c) - p).squaredNorm();
-    if (d < nearest) nearest = d, in_cut = f.cut, last_nearest_ = k;
-  }
-  // Farther than half the margin from every listed face, a face not listed may be nearer; and
-  // such a point of F is not on the mesh's sheet there anyway.
-  return in_cut && nearest <= 0.25 * margin_ * margin_;
+  // The first nearest face in the list's order, as a plain search over every face finds it,
+  // through a grid of the faces (on Colin27 a plain search was a fifth of a run's CPU, in the
+  // failed repairs of a layer's rim). Farther than half the margin from every listed face, a
+  // face not listed may be nearer; and such a point of F is not on the mesh's sheet there anyway.
+  const NearestTriangleIndex::Hit hit = nearest_.nearest(p, 0.25 * margin_ * margin_);
+  return hit.triangle != NearestTriangleIndex::kNone && in_cut_[hit.triangle];
 }
 
 // What a successful attempt does to the mesh: its splits (in order), then the surgery.
