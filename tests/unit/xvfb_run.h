@@ -43,7 +43,13 @@ inline XvfbRun run_under_xvfb(const std::string& command, const std::filesystem:
       options.kill_after_seconds > 0
           ? "timeout -s KILL " + std::to_string(options.kill_after_seconds) + " "
           : "";
-  return run_logged(timeout + "xvfb-run -a -s '-screen 0 " + options.screen + "' " + command, log);
+  // The X authority file beside the log, not in a directory xvfb-run makes and removes: under
+  // load its removal failed now and then ("problem while cleaning up temporary directory",
+  // status 5, whatever the viewer's own status).
+  const std::string auth = log.string() + ".xauth";
+  return run_logged(
+      timeout + "xvfb-run -a -f '" + auth + "' -s '-screen 0 " + options.screen + "' " + command,
+      log);
 }
 
 // A shell script under its own display (the scripted-input tests).
