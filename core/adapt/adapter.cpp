@@ -844,11 +844,17 @@ void Adapter::split_pass(bool initial) {
       options_.hold_stalled_splits && options_.geometric && !initial && step_ > 0 && !topology_;
   const std::uint32_t pass = bound ? ++split_pass_id_ : 0;
   if (bound) tracker_->grow(mesh_);
+  // The urgencies in parallel, the queue filled in face order as a serial scan fills it (the
+  // queue breaks ties by its insertion history, not by face).
+  urgent_collector_.collect(static_cast<std::int64_t>(mesh_.face_capacity()), urgent_,
+                            [&](std::int64_t i, std::pair<double, Face>& hit) {
+                              const Face f(static_cast<std::uint32_t>(i));
+                              if (!mesh_.is_alive(f)) return false;
+                              hit = {split_urgency(f, samples_.face_error(f), initial), f};
+                              return hit.first > 1.0;
+                            });
   std::priority_queue<SplitEntry> queue;
-  for (Face f : mesh_.live_faces()) {
-    const double u = split_urgency(f, samples_.face_error(f), initial);
-    if (u > 1.0) queue.push({u, f.idx, tracker_->stamp[f.idx]});
-  }
+  for (const auto& [u, f] : urgent_) queue.push({u, f.idx, tracker_->stamp[f.idx]});
   const std::size_t created_before = tracker_->vertices_created;
   while (!queue.empty()) {
     const SplitEntry e = queue.top();
@@ -947,12 +953,24 @@ void Adapter::finish_stats() {
     // Survivors: alive now and born before this step, so alive at its start (an id freed by
     // a weld and reused by a split this step carries this step's birth). Counted and measured
     // in one sweep over the vertices.
+    // The distances in parallel, summed in vertex order (the mean's last bits are the serial
+    // sum's, whatever the thread count).
+    const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+    std::vector<double>& moved = survivor_displacement_;
+    moved.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      moved[static_cast<std::size_t>(i)] =
+          mesh_.is_alive(v) && tracker_->birth_step[v.idx] < step_
+              ? (mesh_.position(v) - start_positions_[v.idx]).norm()
+              : -1.0;
+    }
     std::size_t kept = 0;
     double sum = 0, worst = 0;
-    for (Vertex v : mesh_.live_vertices()) {
-      if (tracker_->birth_step[v.idx] >= step_) continue;
+    for (const double d : moved) {
+      if (d < 0) continue;  // not a survivor (a distance is >= 0, or NaN)
       ++kept;
-      const double d = (mesh_.position(v) - start_positions_[v.idx]).norm();
       sum += d;
       worst = std::max(worst, d);
     }

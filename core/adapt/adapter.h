@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/adapt/adapt_options.h"
@@ -27,6 +28,7 @@
 #include "core/adapt/step_stats.h"
 #include "core/adapt/surface_probe.h"
 #include "core/mesh/mesh48.h"
+#include "core/parallel.h"
 #include "core/surface/surface.h"
 
 namespace dynamesh {
@@ -199,6 +201,11 @@ class Adapter {
   std::vector<double> weld_keys_;
   std::vector<std::uint8_t> weld_ambiguous_;
   std::vector<Face> star_skipped_;  // measure_star()'s list, reused star to star
+  // split_pass()'s faces with an urgency above 1 (and it), in face order, reused pass to pass.
+  OrderedCollector<std::pair<double, Face>> urgent_collector_;
+  std::vector<std::pair<double, Face>> urgent_;
+  // finish_stats()'s per-vertex survivor displacements (-1: not a survivor), reused.
+  std::vector<double> survivor_displacement_;
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;

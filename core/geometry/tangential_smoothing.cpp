@@ -70,8 +70,8 @@ struct SmoothingWorkspace::Buffers {
   std::size_t reused = 0;                       // frames reused by the last call
   std::vector<std::vector<RingSum>> ring_sums;  // per thread, while summing
   std::vector<std::uint8_t> boundary;           // per vertex: on an open boundary
-  std::vector<std::uint8_t> bad;                // per face slot: fails the guards
   std::vector<Face> check, next_check;
+  OrderedCollector<Face> bad_collector;  // the faces failing the guards, in face order
 };
 
 SmoothingWorkspace::SmoothingWorkspace() : buffers_(std::make_unique<Buffers>()) {}
@@ -330,20 +330,15 @@ bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double cos_limit
 }
 
 // Undoes moves around unacceptable faces until none is left (Jacobi moves interact): every
-// face is checked once, in parallel; afterwards only the faces around undone moves.
+// face is checked once, in parallel (listed in face order, as a serial check lists them);
+// afterwards only the faces around undone moves.
 std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit_deg) {
   const double cos_limit = std::cos(limit_deg * M_PI / 180.0);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  w.bad.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    w.bad[static_cast<std::size_t>(i)] =
-        mesh.is_alive(f) && !face_acceptable(mesh, w, f, cos_limit);
-  }
-  w.check.clear();
-  for (std::int64_t i = 0; i < n; ++i)
-    if (w.bad[static_cast<std::size_t>(i)]) w.check.push_back(Face(static_cast<std::uint32_t>(i)));
+  w.bad_collector.collect(n, w.check, [&](std::int64_t i, Face& f) {
+    f = Face(static_cast<std::uint32_t>(i));
+    return mesh.is_alive(f) && !face_acceptable(mesh, w, f, cos_limit);
+  });
   std::size_t reverted = 0;
   for (int round = 0; round < 8 && !w.check.empty(); ++round) {
     w.next_check.clear();
