@@ -721,23 +721,19 @@ void Adapter::weld_pass() {
     const double k = weld_key(plan, ambiguous, known);
     return ambiguous ? decide_measured(plan, known) : k;
   };
-  std::vector<double>& key = weld_keys_;
-  std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
-  // Every slot is written by the loop (no clearing pass before it).
-  key.resize(static_cast<std::size_t>(n));
-  ambiguous.resize(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
+  // The keys in parallel; the candidates (a key, or ambiguous) listed in vertex order, as the
+  // serial sweep below needs them (OrderedCollector).
+  weld_collector_.collect(n, weld_candidates_, [&](std::int64_t i, WeldCandidate& c) {
     DiamondChange plan;
-    key[static_cast<std::size_t>(i)] = std::numeric_limits<double>::quiet_NaN();
-    ambiguous[static_cast<std::size_t>(i)] = 0;
-    if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
+    c.vertex = static_cast<std::uint32_t>(i);
+    if (!mesh_.plan_weld(Vertex(c.vertex), plan)) return false;
     bool a = false;
     double known = std::numeric_limits<double>::quiet_NaN();
     const double k = weld_key(plan, a, known);
-    key[static_cast<std::size_t>(i)] = a ? known : k;  // ambiguous: its post-weld error, for now
-    ambiguous[static_cast<std::size_t>(i)] = a;
-  }
+    c.key = a ? known : k;  // ambiguous: its post-weld error, for now
+    c.ambiguous = a;
+    return a || !std::isnan(k);
+  });
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
   };
@@ -746,15 +742,14 @@ void Adapter::weld_pass() {
   // changes no other star's range or samples: each is still ambiguous, with the same post-weld
   // error, and no other key changes, so the queue is filled in the same sweep.
   std::priority_queue<WeldEntry> queue;
-  for (std::int64_t i = 0; i < n; ++i) {
-    double& k = key[static_cast<std::size_t>(i)];
-    if (ambiguous[static_cast<std::size_t>(i)]) {
+  for (const WeldCandidate& c : weld_candidates_) {
+    double k = c.key;
+    if (c.ambiguous) {
       DiamondChange plan;
-      k = mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)
-              ? decide_measured(plan, k)
-              : std::numeric_limits<double>::quiet_NaN();
+      k = mesh_.plan_weld(Vertex(c.vertex), plan) ? decide_measured(plan, k)
+                                                  : std::numeric_limits<double>::quiet_NaN();
     }
-    if (!std::isnan(k)) queue.push(entry(k, static_cast<std::uint32_t>(i)));
+    if (!std::isnan(k)) queue.push(entry(k, c.vertex));
   }
   tracker_->touched.clear();
   DiamondChange plan;
