@@ -16,7 +16,11 @@
 // Adapter, keeps that object file in every program that adapts meshes).
 #pragma once
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace dynamesh {
 
@@ -25,5 +29,49 @@ inline constexpr std::int64_t kParallelMin = 4096;
 // "passive" when the engine chose the policy; the user's OMP_WAIT_POLICY / GOMP_SPINCOUNT
 // otherwise ("user: ..."), or "default" when the executable could not set it.
 const char* engine_wait_policy();
+
+// An order-keeping parallel filter, for the step's scans over every face or vertex slot whose
+// few hits feed a serial pass (a queue, a list to measure) that must see them in slot order:
+// the same items in the same order as the serial loop, whatever the thread count. Slots are
+// cut into fixed blocks taken dynamically (a thread that the machine's other load delays holds
+// up one block, not half the slots); each block keeps its hits in its own list, and the lists
+// are joined in block order. The lists are kept between calls: no allocation per step once
+// they have grown. At 10^6 triangles these scans ran on one thread while the other waited
+// (issue 17's profile of the capsule-bend step).
+template <class T>
+class OrderedCollector {
+ public:
+  // Sets `out` to the items of every i in [0, n) for which keep(i, item) returns true (it
+  // fills `item` then), in the order of i. keep runs in parallel above kParallelMin slots.
+  template <class Keep>
+  void collect(std::int64_t n, std::vector<T>& out, Keep keep) {
+    out.clear();
+    T item;
+    if (n <= kParallelMin) {
+      for (std::int64_t i = 0; i < n; ++i)
+        if (keep(i, item)) out.push_back(item);
+      return;
+    }
+    const std::int64_t blocks = (n + kBlock - 1) / kBlock;
+    if (parts_.size() < static_cast<std::size_t>(blocks))
+      parts_.resize(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(dynamic, 1) firstprivate(item)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+      std::vector<T>& part = parts_[static_cast<std::size_t>(b)];
+      part.clear();
+      const std::int64_t end = std::min(n, (b + 1) * kBlock);
+      for (std::int64_t i = b * kBlock; i < end; ++i)
+        if (keep(i, item)) part.push_back(item);
+    }
+    for (std::int64_t b = 0; b < blocks; ++b) {
+      const std::vector<T>& part = parts_[static_cast<std::size_t>(b)];
+      out.insert(out.end(), part.begin(), part.end());
+    }
+  }
+
+ private:
+  static constexpr std::int64_t kBlock = 16384;
+  std::vector<std::vector<T>> parts_;
+};
 
 }  // namespace dynamesh

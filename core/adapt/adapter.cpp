@@ -721,23 +721,19 @@ void Adapter::weld_pass() {
     const double k = weld_key(plan, ambiguous, known);
     return ambiguous ? decide_measured(plan, known) : k;
   };
-  std::vector<double>& key = weld_keys_;
-  std::vector<std::uint8_t>& ambiguous = weld_ambiguous_;
-  // Every slot is written by the loop (no clearing pass before it).
-  key.resize(static_cast<std::size_t>(n));
-  ambiguous.resize(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
+  // The keys in parallel; the candidates (a key, or ambiguous) listed in vertex order, as the
+  // serial sweep below needs them (OrderedCollector).
+  weld_collector_.collect(n, weld_candidates_, [&](std::int64_t i, WeldCandidate& c) {
     DiamondChange plan;
-    key[static_cast<std::size_t>(i)] = std::numeric_limits<double>::quiet_NaN();
-    ambiguous[static_cast<std::size_t>(i)] = 0;
-    if (!mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)) continue;
+    c.vertex = static_cast<std::uint32_t>(i);
+    if (!mesh_.plan_weld(Vertex(c.vertex), plan)) return false;
     bool a = false;
     double known = std::numeric_limits<double>::quiet_NaN();
     const double k = weld_key(plan, a, known);
-    key[static_cast<std::size_t>(i)] = a ? known : k;  // ambiguous: its post-weld error, for now
-    ambiguous[static_cast<std::size_t>(i)] = a;
-  }
+    c.key = a ? known : k;  // ambiguous: its post-weld error, for now
+    c.ambiguous = a;
+    return a || !std::isnan(k);
+  });
   auto entry = [](double k, std::uint32_t v) {
     return k < 0 ? WeldEntry{-1.0 - k, v, true} : WeldEntry{k, v, false};
   };
@@ -746,15 +742,14 @@ void Adapter::weld_pass() {
   // changes no other star's range or samples: each is still ambiguous, with the same post-weld
   // error, and no other key changes, so the queue is filled in the same sweep.
   std::priority_queue<WeldEntry> queue;
-  for (std::int64_t i = 0; i < n; ++i) {
-    double& k = key[static_cast<std::size_t>(i)];
-    if (ambiguous[static_cast<std::size_t>(i)]) {
+  for (const WeldCandidate& c : weld_candidates_) {
+    double k = c.key;
+    if (c.ambiguous) {
       DiamondChange plan;
-      k = mesh_.plan_weld(Vertex(static_cast<std::uint32_t>(i)), plan)
-              ? decide_measured(plan, k)
-              : std::numeric_limits<double>::quiet_NaN();
+      k = mesh_.plan_weld(Vertex(c.vertex), plan) ? decide_measured(plan, k)
+                                                  : std::numeric_limits<double>::quiet_NaN();
     }
-    if (!std::isnan(k)) queue.push(entry(k, static_cast<std::uint32_t>(i)));
+    if (!std::isnan(k)) queue.push(entry(k, c.vertex));
   }
   tracker_->touched.clear();
   DiamondChange plan;
@@ -844,11 +839,17 @@ void Adapter::split_pass(bool initial) {
       options_.hold_stalled_splits && options_.geometric && !initial && step_ > 0 && !topology_;
   const std::uint32_t pass = bound ? ++split_pass_id_ : 0;
   if (bound) tracker_->grow(mesh_);
+  // The urgencies in parallel, the queue filled in face order as a serial scan fills it (the
+  // queue breaks ties by its insertion history, not by face).
+  urgent_collector_.collect(static_cast<std::int64_t>(mesh_.face_capacity()), urgent_,
+                            [&](std::int64_t i, std::pair<double, Face>& hit) {
+                              const Face f(static_cast<std::uint32_t>(i));
+                              if (!mesh_.is_alive(f)) return false;
+                              hit = {split_urgency(f, samples_.face_error(f), initial), f};
+                              return hit.first > 1.0;
+                            });
   std::priority_queue<SplitEntry> queue;
-  for (Face f : mesh_.live_faces()) {
-    const double u = split_urgency(f, samples_.face_error(f), initial);
-    if (u > 1.0) queue.push({u, f.idx, tracker_->stamp[f.idx]});
-  }
+  for (const auto& [u, f] : urgent_) queue.push({u, f.idx, tracker_->stamp[f.idx]});
   const std::size_t created_before = tracker_->vertices_created;
   while (!queue.empty()) {
     const SplitEntry e = queue.top();
@@ -947,12 +948,24 @@ void Adapter::finish_stats() {
     // Survivors: alive now and born before this step, so alive at its start (an id freed by
     // a weld and reused by a split this step carries this step's birth). Counted and measured
     // in one sweep over the vertices.
+    // The distances in parallel, summed in vertex order (the mean's last bits are the serial
+    // sum's, whatever the thread count).
+    const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
+    std::vector<double>& moved = survivor_displacement_;
+    moved.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      moved[static_cast<std::size_t>(i)] =
+          mesh_.is_alive(v) && tracker_->birth_step[v.idx] < step_
+              ? (mesh_.position(v) - start_positions_[v.idx]).norm()
+              : -1.0;
+    }
     std::size_t kept = 0;
     double sum = 0, worst = 0;
-    for (Vertex v : mesh_.live_vertices()) {
-      if (tracker_->birth_step[v.idx] >= step_) continue;
+    for (const double d : moved) {
+      if (d < 0) continue;  // not a survivor (a distance is >= 0, or NaN)
       ++kept;
-      const double d = (mesh_.position(v) - start_positions_[v.idx]).norm();
       sum += d;
       worst = std::max(worst, d);
     }

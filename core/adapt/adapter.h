@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/adapt/adapt_options.h"
@@ -27,6 +28,7 @@
 #include "core/adapt/step_stats.h"
 #include "core/adapt/surface_probe.h"
 #include "core/mesh/mesh48.h"
+#include "core/parallel.h"
 #include "core/surface/surface.h"
 
 namespace dynamesh {
@@ -194,11 +196,21 @@ class Adapter {
   SampleStore samples_;
   ErrorPredictor predictor_;
   std::vector<Face> to_measure_;  // sampling()'s list, reused step to step
-  // weld_pass()'s per-vertex keys and ambiguity flags, reused step to step (above 4 MB a
-  // fresh block is fresh pages: allocator_policy.h).
-  std::vector<double> weld_keys_;
-  std::vector<std::uint8_t> weld_ambiguous_;
+  // weld_pass()'s candidates in vertex order: a weld key (weld_pass), or ambiguous (the key
+  // its post-weld error), reused step to step.
+  struct WeldCandidate {
+    double key = 0.0;
+    std::uint32_t vertex = 0;
+    bool ambiguous = false;
+  };
+  OrderedCollector<WeldCandidate> weld_collector_;
+  std::vector<WeldCandidate> weld_candidates_;
   std::vector<Face> star_skipped_;  // measure_star()'s list, reused star to star
+  // split_pass()'s faces with an urgency above 1 (and it), in face order, reused pass to pass.
+  OrderedCollector<std::pair<double, Face>> urgent_collector_;
+  std::vector<std::pair<double, Face>> urgent_;
+  // finish_stats()'s per-vertex survivor displacements (-1: not a survivor), reused.
+  std::vector<double> survivor_displacement_;
   std::unique_ptr<Tracker> tracker_;
   SmoothingWorkspace smoothing_workspace_;  // reused by every step's tangential correction
   StepStats stats_;

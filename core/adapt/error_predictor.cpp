@@ -1,6 +1,7 @@
 #include "core/adapt/error_predictor.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -332,22 +333,20 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
   radius_[phase] = curvature > 0 ? 1.0 / curvature : std::numeric_limits<double>::infinity();
   curvature_radius_ = *std::min_element(radius_.begin(), radius_.end());
   const auto limit = static_cast<float>(kMaxTravelFraction * curvature_radius_);
-  measure.clear();
-  skipped_ = 0;
-  guarded_ = 0;
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    if (!mesh.is_alive(f)) continue;
+  // In parallel, in face order (OrderedCollector).
+  std::atomic<std::size_t> guarded{0};
+  collector_.collect(n, measure, [&](std::int64_t i, Face& f) {
+    f = Face(static_cast<std::uint32_t>(i));
     const auto k = static_cast<std::size_t>(i);
+    if (!mesh.is_alive(f)) return false;
     if (flags_[k] == 2 || (!flags_[k] && !(travel_[k] <= limit))) {
       flags_[k] = 1;
-      ++guarded_;
+      guarded.fetch_add(1, std::memory_order_relaxed);  // rare (guarded())
     }
-    if (flags_[k])
-      measure.push_back(f);
-    else
-      ++skipped_;
-  }
+    return flags_[k] != 0;
+  });
+  guarded_ = guarded.load();
+  skipped_ = mesh.n_faces() - measure.size();
 }
 
 void ErrorPredictor::after_split(Mesh48& mesh, const DiamondChange& change) {

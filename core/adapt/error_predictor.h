@@ -101,6 +101,7 @@
 #include "core/adapt/sample_store.h"
 #include "core/adapt/surface_probe.h"
 #include "core/mesh/mesh48.h"
+#include "core/parallel.h"
 #include "core/surface/projection.h"
 
 namespace dynamesh {
@@ -208,7 +209,8 @@ class ErrorPredictor final : public MeshListener {
   // Per face, its corners' largest summed move since its reference measurement (an upper
   // bound of how far any corner got from where it was then).
   std::vector<float> travel_;
-  std::vector<std::uint8_t> flags_;  // select's scratch
+  std::vector<std::uint8_t> flags_;   // select's scratch
+  OrderedCollector<Face> collector_;  // select's list of faces to measure, in face order
   std::size_t skipped_ = 0, guarded_ = 0;
   double curvature_radius_ = std::numeric_limits<double>::infinity();
   bool carried_ = false;  // begin_step had the material positions (the strain term applies)

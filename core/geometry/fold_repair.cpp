@@ -1,5 +1,7 @@
 #include "core/geometry/fold_repair.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -293,11 +295,15 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
     if constexpr (decltype(sum)::value)
       for (Vertex c : v) b.vertex_normal[c.idx] += normal;
   };
-  auto sum_into_corners = [&](std::int64_t i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    if (!mesh.is_alive(f)) return;
-    for (Vertex v : mesh.vertices(f))
-      b.vertex_normal[v.idx] += b.normal[static_cast<std::size_t>(i)];
+  // Every live face's normal into its corners with slots in [first, last), in face order.
+  auto sum_into_corners = [&](std::uint32_t first, std::uint32_t last) {
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Face f(static_cast<std::uint32_t>(i));
+      if (!mesh.is_alive(f)) continue;
+      for (Vertex v : mesh.vertices(f))
+        if (v.idx >= first && v.idx < last)
+          b.vertex_normal[v.idx] += b.normal[static_cast<std::size_t>(i)];
+    }
   };
   auto square_vertex_normal = [&](std::int64_t i) {
     const auto k = static_cast<std::size_t>(i);
@@ -318,12 +324,24 @@ void find_bad_faces(const Mesh48& mesh, const Surface& surface, double min_angle
   if (n > kParallelMin) {
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) shape(i, std::false_type{});
-    for (std::int64_t i = 0; i < n; ++i) sum_into_corners(i);
+      // Each thread sums into its own range of vertex slots, going over every face in face
+      // order: each sum is the serial pass's, the same additions in the same order, with no two
+      // threads writing one vertex. (It was one thread's pass while the other waited: issue 17.)
+#pragma omp parallel
+    {
+      const auto threads = static_cast<std::int64_t>(omp_get_num_threads());
+      const auto t = static_cast<std::int64_t>(omp_get_thread_num());
+      sum_into_corners(static_cast<std::uint32_t>(nv * t / threads),
+                       static_cast<std::uint32_t>(nv * (t + 1) / threads));
+    }
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < nv; ++i) square_vertex_normal(i);
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (std::int64_t i = 0; i < n; ++i) judge(i);
-    for (std::int64_t i = 0; i < n; ++i) collect(i);
+    std::int64_t bad = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : bad)
+    for (std::int64_t i = 0; i < n; ++i) judge(i), bad += b.kind[static_cast<std::size_t>(i)] != 0;
+    // Usually none: then the lists stay empty without a pass over the faces.
+    if (bad)
+      for (std::int64_t i = 0; i < n; ++i) collect(i);
   } else {
     for (std::int64_t i = 0; i < n; ++i) shape(i, std::true_type{});
     for (std::int64_t i = 0; i < nv; ++i) square_vertex_normal(i);

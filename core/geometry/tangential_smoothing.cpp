@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <type_traits>
 #include <vector>
 
 #include "core/geometry/mesh_quality.h"
@@ -28,7 +27,7 @@ struct Weights {
   double operator()(double l) const { return raw ? l : range > 0 ? (l - lo) / range : 0.0; }
 };
 
-// One thread's partial sum of a vertex's one-ring (sum_rings).
+// One range of faces' partial sum of a vertex's one-ring (sum_rings).
 struct RingSum {
   Vec3 sum{Vec3::Zero()};
   Vec3 normal{Vec3::Zero()};  // area-weighted face normals (the mesh normal, frame reuse)
@@ -36,8 +35,12 @@ struct RingSum {
   double length = 0.0;  // edge lengths
   std::uint16_t edges = 0;
   std::uint8_t boundary = 0;
-  std::uint8_t touched = 0;  // a face's normal was summed here (edges: an edge was)
+  // The sum_rings call that started it (0: none); one of an earlier call reads as untouched
+  // (zero). In the struct's padding: still 72 bytes.
+  std::uint32_t call = 0;
 };
+static_assert(sizeof(RingSum) == 72, "RingSum::call is meant to fit in the padding");
+const RingSum kUntouched{};  // what a sum not started in this call stands for
 
 // A vertex's curvature frame as last evaluated (frame reuse, SmoothingWorkspace).
 struct CachedFrame {
@@ -68,10 +71,11 @@ struct SmoothingWorkspace::Buffers {
   std::uint64_t calls = 0;                      // smooth_once calls with this workspace
   bool reuse = false;                           // frames may be reused (a caller's workspace)
   std::size_t reused = 0;                       // frames reused by the last call
-  std::vector<std::vector<RingSum>> ring_sums;  // per thread, while summing
+  std::vector<std::vector<RingSum>> ring_sums;  // per range of faces, while summing
+  std::uint32_t ring_call = 0;                  // sum_rings calls (RingSum::call)
   std::vector<std::uint8_t> boundary;           // per vertex: on an open boundary
-  std::vector<std::uint8_t> bad;                // per face slot: fails the guards
   std::vector<Face> check, next_check;
+  OrderedCollector<Face> bad_collector;  // the faces failing the guards, in face order
 };
 
 SmoothingWorkspace::SmoothingWorkspace() : buffers_(std::make_unique<Buffers>()) {}
@@ -125,8 +129,24 @@ int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
   const auto nf = static_cast<std::int64_t>(mesh.face_capacity());
   const int chunks = nf > kParallelMin ? kRingChunks : 1;
   w.ring_sums.resize(static_cast<std::size_t>(chunks));
-  // `multi`: more than one range, so the combination needs to know which sums each touched.
-  auto face_pass = [&](RingSum* const sums, std::int64_t begin, std::int64_t end, auto multi) {
+  // A range's sums are started at a vertex's first touch in this call, not cleared for every
+  // vertex first: at 10^6 triangles that clearing wrote 36 MB per range and call (issue 17).
+  // The sums are the same: each starts from zero, as before.
+  if (++w.ring_call == 0) {  // wrapped: every sum reads as untouched again
+    for (auto& sums : w.ring_sums)
+      for (RingSum& r : sums) r.call = 0;
+    w.ring_call = 1;
+  }
+  const std::uint32_t call = w.ring_call;
+  auto face_pass = [&](std::vector<RingSum>& all, std::int64_t begin, std::int64_t end) {
+    auto sums = [&](Vertex v) -> RingSum& {
+      RingSum& r = all[v.idx];
+      if (r.call != call) {
+        r = RingSum{};
+        r.call = call;
+      }
+      return r;
+    };
     for (std::int64_t f = begin; f < end; ++f) {
       if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
       for (int e = 0; e < 3; ++e) {
@@ -134,39 +154,33 @@ int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
         const Halfedge twin = mesh.twin(h);
         if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
         const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-        if (!twin.is_valid()) sums[a.idx].boundary = sums[b.idx].boundary = 1;
+        RingSum &sa = sums(a), &sb = sums(b);
+        if (!twin.is_valid()) sa.boundary = sb.boundary = 1;
         const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
         const double length = (pa - pb).norm();
         const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
-        sums[a.idx].sum += weight * pb;
-        sums[a.idx].weight += weight;
-        sums[b.idx].sum += weight * pa;
-        sums[b.idx].weight += weight;
-        sums[a.idx].length += length;
-        sums[b.idx].length += length;
-        ++sums[a.idx].edges;
-        ++sums[b.idx].edges;
+        sa.sum += weight * pb;
+        sa.weight += weight;
+        sb.sum += weight * pa;
+        sb.weight += weight;
+        sa.length += length;
+        sb.length += length;
+        ++sa.edges;
+        ++sb.edges;
       }
       if (!w.reuse) continue;
       const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
       const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
       const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
-      for (Vertex x : v) {
-        sums[x.idx].normal += area_normal;
-        if constexpr (decltype(multi)::value) sums[x.idx].touched = 1;
-      }
+      for (Vertex x : v) sums(x).normal += area_normal;
     }
   };
 #pragma omp parallel for schedule(static) if (chunks > 1) \
     num_threads(std::min(chunks, omp_get_max_threads()))
   for (int c = 0; c < chunks; ++c) {
     std::vector<RingSum>& sums = w.ring_sums[static_cast<std::size_t>(c)];
-    sums.assign(nv, RingSum{});
-    const std::int64_t begin = nf * c / chunks, end = nf * (c + 1) / chunks;
-    if (chunks > 1)
-      face_pass(sums.data(), begin, end, std::true_type{});
-    else
-      face_pass(sums.data(), begin, end, std::false_type{});
+    sums.resize(nv);  // new slots read as untouched
+    face_pass(sums, nf * c / chunks, nf * (c + 1) / chunks);
   }
   w.centroid.resize(nv);
   w.boundary.resize(nv);
@@ -178,13 +192,14 @@ int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
 // Vertex v's centroid, boundary flag, mesh normal and mean edge from the ranges' sums.
 inline void combine_ring(const Mesh48& mesh, Vertex v, int chunks, Work& w) {
   const auto k = static_cast<std::size_t>(v.idx);
-  const RingSum* total = &w.ring_sums[0][k];
+  auto touched = [&](const RingSum& r) { return r.call == w.ring_call; };
+  const RingSum* total = touched(w.ring_sums[0][k]) ? &w.ring_sums[0][k] : &kUntouched;
   std::optional<RingSum> added;  // (not constructed unless two ranges touched the vertex)
   // The ranges that touched it, in order; the first as it is (x + 0 is not always x: -0).
   for (std::size_t c = 1; c < static_cast<std::size_t>(chunks); ++c) {
     const RingSum& r = w.ring_sums[c][k];
-    if (!(r.edges || r.touched)) continue;
-    if (!(total->edges || total->touched)) {
+    if (!touched(r)) continue;
+    if (total == &kUntouched) {
       total = &r;
       continue;
     }
@@ -330,20 +345,15 @@ bool face_acceptable(const Mesh48& mesh, const Work& w, Face f, double cos_limit
 }
 
 // Undoes moves around unacceptable faces until none is left (Jacobi moves interact): every
-// face is checked once, in parallel; afterwards only the faces around undone moves.
+// face is checked once, in parallel (listed in face order, as a serial check lists them);
+// afterwards only the faces around undone moves.
 std::size_t apply_guards(const Mesh48& mesh, Work& w, double limit_deg) {
   const double cos_limit = std::cos(limit_deg * M_PI / 180.0);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  w.bad.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Face f(static_cast<std::uint32_t>(i));
-    w.bad[static_cast<std::size_t>(i)] =
-        mesh.is_alive(f) && !face_acceptable(mesh, w, f, cos_limit);
-  }
-  w.check.clear();
-  for (std::int64_t i = 0; i < n; ++i)
-    if (w.bad[static_cast<std::size_t>(i)]) w.check.push_back(Face(static_cast<std::uint32_t>(i)));
+  w.bad_collector.collect(n, w.check, [&](std::int64_t i, Face& f) {
+    f = Face(static_cast<std::uint32_t>(i));
+    return mesh.is_alive(f) && !face_acceptable(mesh, w, f, cos_limit);
+  });
   std::size_t reverted = 0;
   for (int round = 0; round < 8 && !w.check.empty(); ++round) {
     w.next_check.clear();
