@@ -209,6 +209,10 @@ const StepStats& Adapter::initialize() {
   stats_ = StepStats{};
   stats_.time = t0;
   Stopwatch clock;
+  // Every face measured on its turn, as initialize_here() measures them: the interior peaks the
+  // detour's steps left for later turns are looked for now (SampleStore::on_turn).
+  samples_.set_every_turn();
+  measure(mesh_.live_faces());
   if (options_.structural) settle();
   stats_.seconds.weld = clock.lap();
   publish_repaired();
@@ -237,6 +241,7 @@ const StepStats& Adapter::initialize_here() {
   tracker_->grow(mesh_);
   tracker_->forget_lineages(mesh_);
   samples_.reset(mesh_);
+  samples_.set_every_turn();  // until the first step (sampling)
   stats_.seconds.project = clock.lap();
   if (options_.sampling == Sampling::kPredictive)
     predictor_.begin_step(mesh_, probe_, start_positions_, step_);
@@ -572,6 +577,7 @@ void Adapter::tangential_correction() {
 
 void Adapter::sampling() {
   samples_.set_pattern_epoch(surface_epoch_);
+  samples_.set_step(step_);  // whose turn it is: both modes measure those faces (select too)
   samples_.refresh_patterns(mesh_);
   if (options_.sampling == Sampling::kFull) {
     measure(mesh_.live_faces());

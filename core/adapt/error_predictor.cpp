@@ -112,8 +112,6 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
     has_reference_.resize(mesh.face_capacity(), 0);
     bound_.resize(mesh.face_capacity(), 0.0);
     travel_.resize(mesh.face_capacity(), 0.0f);
-    for (std::size_t f = rotation_.size(); f < mesh.face_capacity(); ++f)
-      rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
   }
 }
 
@@ -273,8 +271,8 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       travel_[k] += moved;  // reset by record()
       const bool slid_far =
           !(slid * slid <= static_cast<float>(kMaxSlideFraction * kMaxSlideFraction) * shortest2);
-      bool needed = !has_reference_[k] || !samples.measured(f) || samples.densified(f) ||
-                    rotation_[k] == phase;
+      bool needed =
+          !has_reference_[k] || !samples.measured(f) || samples.densified(f) || samples.on_turn(f);
       if (!needed && slid_far) {
         flags_[k] = 2;  // measured for its slide alone (guarded())
         continue;
@@ -321,9 +319,7 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
         // The reading follows the residual at the samples and, near the split bound, on the
         // edges (SampleStore::set_peak_search).
         bound_[k] = residual * samples.reading_gain(f, residual);
-        needed = would_split(f, samples.face_error(f) + bound_[k]) ||
-                 samples.peak_check_due(f, samples.face_error(f) - bound_[k],
-                                        samples.face_error(f) + bound_[k]);
+        needed = would_split(f, samples.face_error(f) + bound_[k]);
       }
       flags_[k] = needed;
     }
@@ -364,9 +360,6 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(has_reference_, r.face, r.n_faces);
   renumber_elements(bound_, r.face, r.n_faces);
   renumber_elements(travel_, r.face, r.n_faces);
-  for (std::size_t f = rotation_.size(); f < r.face.size(); ++f)  // slots not seen yet
-    rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
-  renumber_elements(rotation_, r.face, r.n_faces);
   flags_.clear();  // select's scratch
 }
 

@@ -73,16 +73,17 @@
 //     where the surface has a rest map (capsule-bend: the vertices are carried with it, and only
 //     the correction and the smoothing slide them; the seam stays under the same faces), else the
 //     whole move.
-//   - Stochastic sampling and drift beyond all of the above: a rotating 1/kRotation of all
-//     faces is measured every step, so no face goes unmeasured for more than kRotation steps.
+//   - Stochastic sampling and drift beyond all of the above: every face is measured on its turn
+//     in the rotation (SampleStore::on_turn, 1/kRotation of the faces every step), so no face
+//     goes unmeasured for more than kRotation steps.
 // Faces whose samples changed (split, weld, new pattern: SampleStore::measured() false) are
-// always measured, and so is a face that could now read between the start of the peak search
-// and the split bound for the first time since its samples changed (SampleStore::peak_check_due):
-// that measurement may keep a sample at its interior peak, and full sampling would keep it then, on
-// the same samples. (Skipped, the face would keep other samples than with full sampling from
-// then on, and the two modes' meshes part: when a peak was looked for at every such
-// measurement and nothing made prediction measure, sinc at T = 0.002 parted at step 59 of 100
-// and twist at step 14 of 40, PredictiveDecisions.)
+// always measured. Those two kinds of measurement, which full sampling makes too, are the only
+// ones at which a face's interior peak is looked for (SampleStore::peak_check_due), so that both
+// modes keep the same samples without prediction measuring a face for that alone. (Looked for at
+// every measurement, with nothing making prediction measure, sinc at T = 0.002 parted from full
+// sampling at step 59 of 100 and twist at step 14 of 40, PredictiveDecisions. Looked for at the
+// first measurement reading in the search band, prediction had to measure every face that
+// could cross into it: ~650 of the ~2,730 faces measured per twist step at T = 1e-3.)
 //
 // A face is then skipped only when no criterion could ask to split it at its last error plus
 // the bound (split_urgency is non-decreasing in the error). Weld decisions measure the
@@ -114,7 +115,8 @@ class ErrorPredictor final : public MeshListener {
   // A face one of whose corners slid over the surface by more than this fraction of its
   // shortest edge this step is measured (the header's "Assumptions": curvature jumps).
   static constexpr double kMaxSlideFraction = 0.25;
-  static constexpr std::uint32_t kRotation = 16;
+  // The rotation's length (its turns are the samples': SampleStore::on_turn).
+  static constexpr std::uint32_t kRotation = SampleStore::kRotation;
 
   // Forgets every face's reference (e.g. when switching from full sampling).
   void invalidate();
@@ -140,7 +142,8 @@ class ErrorPredictor final : public MeshListener {
   void grow_for(const Mesh48& mesh) { grow(mesh); }
 
   // The faces to measure this step. `would_split(f, error)`: whether some criterion would
-  // split f at that error. Stores every skipped face's bound (bound()).
+  // split f at that error. Stores every skipped face's bound (bound()). `samples` names the
+  // step begin_step() was given (SampleStore::set_step): the faces on their turn are measured.
   void select(const Mesh48& mesh, const SurfaceProbe& probe, const SampleStore& samples,
               const std::function<bool(Face, double)>& would_split, std::vector<Face>& measure);
 
@@ -166,7 +169,7 @@ class ErrorPredictor final : public MeshListener {
   // A split-born vertex (its id may be one a weld freed this step) has no frame yet.
   void after_split(Mesh48& mesh, const DiamondChange& change) override;
   void after_weld(Mesh48&, const DiamondChange&) override {}
-  // Every face's reference and rotation slot, every vertex's frame move to the new ids.
+  // Every face's reference, every vertex's frame move to the new ids.
   void after_renumber(Mesh48& mesh, const Renumbering& renumbering) override;
 
  private:
@@ -203,9 +206,6 @@ class ErrorPredictor final : public MeshListener {
   std::vector<Coefficients> reference_;
   std::vector<std::uint8_t> has_reference_;
   std::vector<double> bound_;
-  // Each face's turn in the rotation (id % kRotation when its slot was made): kept through a
-  // renumbering, so that no face waits more than kRotation steps across one either.
-  std::vector<std::uint8_t> rotation_;
   // Per face, its corners' largest summed move since its reference measurement (an upper
   // bound of how far any corner got from where it was then).
   std::vector<float> travel_;

@@ -111,6 +111,8 @@ void SampleStore::grow_faces(std::size_t capacity) {
   peak_error_.resize(capacity, -1.0);
   edge_slots_.resize(3 * capacity);
   peak_checked_.resize(capacity, 0);
+  for (std::size_t f = rotation_.size(); f < capacity; ++f)
+    rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -214,6 +216,7 @@ void SampleStore::reset(const Mesh48& mesh) {
   model_error_.clear();
   peak_error_.clear();
   peak_checked_.clear();
+  rotation_.clear();
   grow_faces(mesh.face_capacity());
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
@@ -245,7 +248,7 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
     }
   }
   QuadraticErrorModel::Result r = model.evaluate();
-  const bool check = peak_check_due(f, r.error, r.error) && r.resolved;
+  const bool check = peak_check_due(f, r.error) && r.resolved;
   if (check) peak_checked_[f.idx] = 1;
   Vec3 at;
   if (check && face_count_[f.idx] < kMaxSamplesPerFace && model.interior_peak(at)) {
@@ -626,6 +629,7 @@ void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(model_error_, r.face, r.n_faces);
   renumber_elements(peak_error_, r.face, r.n_faces);
   renumber_elements(peak_checked_, r.face, r.n_faces);
+  renumber_elements(rotation_, r.face, r.n_faces);
   unresolved_.clear();  // scratch of one call
   keep_.clear();
   compact();

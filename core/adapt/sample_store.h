@@ -52,7 +52,7 @@ class SampleStore final : public MeshListener {
   // the model's reading or the peaks move (ErrorPredictor's bound). floor 0 (the default): no
   // search.
   // `interior_ceiling`: the reading from which a face is split whatever it holds inside (the
-  // split bound, T + eps); its interior peak is looked for only below it (peak_check_due).
+  // split bound, T + eps); its interior peak is looked for only below it (evaluate_faces).
   void set_peak_search(double floor, double largest_under_reading,
                        double interior_ceiling = std::numeric_limits<double>::infinity());
   // The most the face's reading can move, per unit of movement of its model reading and its
@@ -60,22 +60,17 @@ class SampleStore final : public MeshListener {
   // ramped peaks could then be the reading below the floor, 1 elsewhere.
   double reading_gain(Face f, double bound) const;
   double density() const { return density_; }
-  // Whether a measurement of the face reading anywhere in [lo, hi] could look for its interior
-  // peak (evaluate_faces): once per face, at the first measurement that reads it at or above
-  // the peak search's start and below the interior ceiling (set_peak_search), between splits,
-  // welds and new patterns. ErrorPredictor measures a face that could read so: full sampling
-  // then looks at the same moment on the same samples, so that both modes keep the same
-  // samples. Above the ceiling the face is split whatever it holds inside, and a peak kept
-  // there changes no decision; it only raised the readings of faces spanning a gap in F
-  // (the mesh's topology not F's) over their ancestors', and the split pass's stall bound
-  // (Adapter::split_pass), which holds faces whose error does not fall, restarted its count
-  // at each rise: the dumbbell split, unwatched, held its splits only at depth 16 and ran into
-  // the 5,000-triangle budget in step 3 (229 such restarts in that pass); with the ceiling 38
-  // restarts, held at depth 10, 1,426 triangles.
-  bool peak_check_due(Face f, double lo, double hi) const {
-    return peak_floor_ > 0.0 && hi >= search_start_ && lo < interior_ceiling_ &&
-           !peak_checked_[f.idx];
-  }
+  // The measurement rotation. Each face has a turn every kRotation steps (its slot's id %
+  // kRotation when the slot was made, kept through a renumbering, so that no face waits longer
+  // across one either); set_step() names the step whose turn it is. Predictive sampling
+  // (ErrorPredictor) measures every face on its turn, full sampling every face every step: both
+  // measure it then, and so the interior peak is looked for only then (evaluate_faces).
+  // set_every_turn(): every face's turn (the initial frame, where both modes measure them all:
+  // so that it is settled, a fixed point of a static surface, Adapter::initialize).
+  static constexpr std::uint32_t kRotation = 16;
+  void set_step(std::uint64_t step) { turn_ = static_cast<std::uint8_t>(step % kRotation); }
+  void set_every_turn() { turn_ = kEveryTurn; }
+  bool on_turn(Face f) const { return turn_ == kEveryTurn || rotation_[f.idx] == turn_; }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
   // parallel; updates each face's error. A face whose samples the quadratic model cannot
@@ -88,7 +83,12 @@ class SampleStore final : public MeshListener {
   // inside it (QuadraticErrorModel::interior_peak) is also measured there; where the residual
   // there exceeds the model's reading, the point is kept as one more sample of the face and
   // the face read with it. This is looked for once per face between splits, welds and new
-  // patterns (peak_check_due), so that it cannot grow a face's samples step after step. The model
+  // patterns (peak_check_due), so that it cannot grow a face's samples step after step, and only
+  // at measurements that both sampling modes make: the face's first after its samples changed,
+  // or one on its turn (on_turn). Then both modes keep the same samples, and predictive sampling
+  // need not measure a face only to look for its peak. The price: a face that comes to read in
+  // the search band between its turns is looked at up to kRotation steps later (its edges are
+  // searched at every measurement). The model
   // assumes the residual quadratic over the face; a crest inside it that the nine stratified
   // samples straddle breaks that, and the model under-reads it (sinc, T = 0.002: a face of 9
   // samples read 0.983 (T + eps) where a lattice of order 60 finds 1.137 inside it). Kept as a
@@ -200,6 +200,20 @@ class SampleStore final : public MeshListener {
                            const Vec2 uv[3]);
   // Starts a pass of evaluate_faces: every edge slot filled before is stale.
   void new_pass(const SurfaceProbe& probe);
+  // Whether this measurement of the face, its model reading `reading`, looks for its interior
+  // peak (evaluate_faces): at or above the search's start and below the interior ceiling
+  // (set_peak_search), not yet looked for since its samples changed, and the face's first
+  // measurement since they changed or one on its turn. Above the ceiling the face is split
+  // whatever it holds inside, and a peak kept there changes no decision; it only raised the
+  // readings of faces spanning a gap in F (the mesh's topology not F's) over their ancestors',
+  // and the split pass's stall bound (Adapter::split_pass), which holds faces whose error does
+  // not fall, restarted its count at each rise: the dumbbell split, unwatched, held its splits
+  // only at depth 16 and ran into the 5,000-triangle budget in step 3 (229 such restarts in
+  // that pass); with the ceiling 38 restarts, held at depth 10, 1,426 triangles.
+  bool peak_check_due(Face f, double reading) const {
+    return peak_floor_ > 0.0 && reading >= search_start_ && reading < interior_ceiling_ &&
+           !peak_checked_[f.idx] && (!measured_[f.idx] || on_turn(f));
+  }
   // The reading of a face whose model reads `model` (>= search_start_) and whose edges peak at
   // `peaks` (set_peak_search).
   double peak_reading(double model, double peaks) const;
@@ -210,6 +224,8 @@ class SampleStore final : public MeshListener {
   double largest_under_reading_ = 0.0;
   double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
   double interior_ceiling_ = std::numeric_limits<double>::infinity();  // (peak_check_due)
+  static constexpr std::uint8_t kEveryTurn = 0xff;
+  std::uint8_t turn_ = kEveryTurn;  // set_step, set_every_turn
   std::uint64_t seed_;
   std::uint64_t epoch_ = 0;              // set_pattern_epoch
   std::uint64_t patterns_drawn_ = 0;     // sample_changes()
@@ -238,6 +254,7 @@ class SampleStore final : public MeshListener {
   bool share_edges_ = false;  // this pass may share them (new_pass)
   std::uint64_t edge_peaks_shared_ = 0;
   std::vector<std::uint8_t> peak_checked_;  // peak_check_due: the interior peak was looked for
+  std::vector<std::uint8_t> rotation_;      // each face's turn (on_turn)
   std::vector<std::uint8_t> unresolved_;    // per-face flags (evaluate_faces, refresh_patterns)
   std::vector<std::uint8_t> keep_;          // evaluate_faces: a sample to append, per face
   std::vector<Sample> kept_;                // and that sample

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "core/adapt/error_model.h"
@@ -52,13 +53,23 @@ double lattice_error(const QuarticDome& s, const Vec2 (&uv)[3], int n, bool edge
   return worst;
 }
 
+// The dome's one face: the unit right triangle in (u, v), its corners on the surface.
+struct DomeFace {
+  Vec2 uv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  Vec3 p[3];
+  Mesh48 mesh;
+  explicit DomeFace(const QuarticDome& s)
+      : p{s.position(uv[0]), s.position(uv[1]), s.position(uv[2])},
+        mesh(Mesh48::from_base_triangles({p[0], p[1], p[2]}, {uv[0], uv[1], uv[2]},
+                                         {{{0, 1, 2}}})) {}
+};
+
 TEST(InteriorPeak, FaceWhoseModelUnderReadsItsInteriorIsMeasuredWhereTheModelPeaks) {
   const QuarticDome surface;
   const SurfaceProbe probe(surface);
-  const Vec2 uv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
-  const Vec3 p[3] = {surface.position(uv[0]), surface.position(uv[1]), surface.position(uv[2])};
-  const Mesh48 mesh =
-      Mesh48::from_base_triangles({p[0], p[1], p[2]}, {uv[0], uv[1], uv[2]}, {{{0, 1, 2}}});
+  const DomeFace face(surface);
+  const auto& uv = face.uv;
+  const Mesh48& mesh = face.mesh;
   const double dense = lattice_error(surface, uv, 300, false);
   const double edges = lattice_error(surface, uv, 300, true);
   ASSERT_NEAR(dense, QuarticDome::kAmplitude, 1e-6);
@@ -78,7 +89,7 @@ TEST(InteriorPeak, FaceWhoseModelUnderReadsItsInteriorIsMeasuredWhereTheModelPea
     QuadraticErrorModel pattern;
     int k = 0;
     store.for_each_sample(Face(0), [&](const Vec3& b, double) {
-      if (k++ < 9) pattern.add(b, probe.residual_at(p, uv, b));
+      if (k++ < 9) pattern.add(b, probe.residual_at(face.p, uv, b));
     });
     const QuadraticErrorModel::Result fit = pattern.evaluate();
     ASSERT_TRUE(fit.resolved) << "seed " << seed;
@@ -97,6 +108,43 @@ TEST(InteriorPeak, FaceWhoseModelUnderReadsItsInteriorIsMeasuredWhereTheModelPea
       "under-read by > 10%% without the interior peak: %d of 32 seeds, caught %d; worst "
       "reading %.3f of the dense maximum\n",
       under_read, caught, worst);
+}
+
+// The peak is looked for only at measurements both sampling modes make (sample_store.h,
+// on_turn): the face's first after its samples changed, or one on its turn in the rotation. A
+// face that comes to read in the search band between its turns keeps its samples until its turn,
+// and then looks once. (With the peak looked for at the first measurement in the band, as
+// before, predictive sampling had to measure every face that could cross into it.)
+TEST(InteriorPeak, LookedForOnlyAtTheFirstMeasurementOrOnTheFacesTurn) {
+  const QuarticDome surface;
+  const DomeFace face(surface);
+  const double dense = lattice_error(surface, face.uv, 300, false);
+  const SurfaceProbe probe(surface);
+  int kept = 0;
+  for (std::uint64_t seed = 1; seed <= 32; ++seed) {
+    SampleStore store(9.0 / 0.5, seed);
+    store.reset(face.mesh);
+    store.set_step(1);  // face 0's turn is step 0 (mod kRotation)
+    store.evaluate_all(face.mesh,
+                       probe);  // its first measurement, with no search: nothing looked for
+    store.set_peak_search(0.7 * dense, 1.0 / 0.7 - 1.0);  // now it reads in the search band
+    for (std::uint64_t step = 1; step < SampleStore::kRotation; ++step) {
+      store.set_step(step);
+      store.evaluate_all(face.mesh, probe);
+      ASSERT_EQ(store.count(Face(0)), 9u) << "seed " << seed << ", step " << step;
+    }
+    store.set_step(SampleStore::kRotation);  // its turn
+    store.evaluate_all(face.mesh, probe);
+    const std::uint32_t after_turn = store.count(Face(0));
+    kept += after_turn == 10;
+    store.set_step(2 * SampleStore::kRotation);  // its next turn: looked for once only
+    store.evaluate_all(face.mesh, probe);
+    EXPECT_EQ(store.count(Face(0)), after_turn) << "seed " << seed;
+  }
+  // Not vacuous: on its turn the face kept a peak for several seeds (those whose 3 x 3 pattern
+  // under-reads it, InteriorPeak above).
+  EXPECT_GE(kept, 4);
+  std::printf("a peak kept on the face's turn for %d of 32 seeds, none before it\n", kept);
 }
 
 }  // namespace
