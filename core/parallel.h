@@ -46,7 +46,7 @@ class OrderedCollector {
   template <class Keep>
   void collect(std::int64_t n, std::vector<T>& out, Keep keep) {
     out.clear();
-    T item;
+    T item{};
     if (n <= kParallelMin) {
       for (std::int64_t i = 0; i < n; ++i)
         if (keep(i, item)) out.push_back(item);
