@@ -619,9 +619,9 @@ Adapter::ErrorRange Adapter::star_error_range(const DiamondChange& plan) const {
   ErrorRange r{0.0, 0.0};
   for (int h = 0; h < plan.count; ++h)
     for (Face f : plan.halves[h].children) {
-      const double e = samples_.face_error(f), b = predictor_.bound(samples_, f);
-      r.lo = std::max(r.lo, e - b);
-      r.hi = std::max(r.hi, e + b);
+      const ErrorPredictor::Range face = predictor_.reading_range(samples_, f);
+      r.lo = std::max(r.lo, face.lo);
+      r.hi = std::max(r.hi, face.hi);
     }
   return r;
 }

@@ -120,7 +120,8 @@ class Adapter {
   // `error`: the post-weld error; `current`: the star's error now.
   bool weld_allowed(const DiamondChange& plan, double error, double current) const;
   // The range the star's current error lies in: exact unless some of its faces were not
-  // measured this step (predictive sampling), then widened by their bounds.
+  // measured this step (predictive sampling), then widened by their reading ranges
+  // (ErrorPredictor::reading_range).
   struct ErrorRange {
     double lo, hi;
   };

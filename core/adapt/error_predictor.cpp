@@ -111,6 +111,7 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
     reference_.resize(mesh.face_capacity());
     has_reference_.resize(mesh.face_capacity(), 0);
     bound_.resize(mesh.face_capacity(), 0.0);
+    rise_.resize(mesh.face_capacity(), 0.0);
     travel_.resize(mesh.face_capacity(), 0.0f);
   }
 }
@@ -319,7 +320,13 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
         // The reading follows the residual at the samples and, near the split bound, on the
         // edges (SampleStore::set_peak_search).
         bound_[k] = residual * samples.reading_gain(f, residual);
-        needed = would_split(f, samples.face_error(f) + bound_[k]);
+        rise_[k] = residual;
+        // The split decision needs only the top of the reading's range (reading_range: below
+        // face_error + bound where the model is the reading; it halved the faces the twist
+        // measured for the split bound, T = 1e-3), looked at only where the cheaper top could
+        // split.
+        const double e = samples.face_error(f);
+        needed = would_split(f, e + bound_[k]) && would_split(f, reading_range(samples, f).hi);
       }
       flags_[k] = needed;
     }
@@ -359,6 +366,7 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(reference_, r.face, r.n_faces);
   renumber_elements(has_reference_, r.face, r.n_faces);
   renumber_elements(bound_, r.face, r.n_faces);
+  renumber_elements(rise_, r.face, r.n_faces);
   renumber_elements(travel_, r.face, r.n_faces);
   flags_.clear();  // select's scratch
 }
@@ -380,6 +388,7 @@ void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,
     reference_[f.idx] = coefficients(mesh, probe, f);
     has_reference_[f.idx] = 1;
     bound_[f.idx] = 0.0;
+    rise_[f.idx] = 0.0;
     travel_[f.idx] = 0.0f;
   }
 }

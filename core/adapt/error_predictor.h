@@ -85,14 +85,20 @@
 // first measurement reading in the search band, prediction had to measure every face that
 // could cross into it: ~650 of the ~2,730 faces measured per twist step at T = 1e-3.)
 //
-// A face is then skipped only when no criterion could ask to split it at its last error plus
-// the bound (split_urgency is non-decreasing in the error). Weld decisions measure the
-// post-weld error themselves; where a star's current error (the "no gain" rule,
-// criteria.h) could decide differently anywhere inside its faces' bounds, the adapter
-// measures those faces first (star_bounds). Split and weld decisions are therefore those of
-// full sampling as long as the assumptions hold.
+// A face is then skipped only when no criterion could ask to split it at the top of its
+// reading's range (split_urgency is non-decreasing in the error): the reading it would have
+// with its model reading and its edge peaks each raised by the bound's residual part
+// (reading_range; never above its last error plus the bound, and below it where the model is
+// the reading and the peaks count only through the ramp: with the top at last error plus
+// bound, half the twist's faces measured for the split bound at T = 1e-3 were such faces).
+// Weld decisions measure the post-weld error themselves; where a star's current error (the
+// "no gain" rule, criteria.h) could decide differently anywhere inside its faces' ranges, the
+// adapter measures those faces first (star_error_range). Split and weld decisions are
+// therefore those of full sampling as long as the assumptions hold; which faces are measured,
+// and so the skipped faces' stale readings, are not.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -156,6 +162,19 @@ class ErrorPredictor final : public MeshListener {
   double bound(const SampleStore& samples, Face f) const {
     return f.idx < bound_.size() && samples.measured(f) ? bound_[f.idx] : 0.0;
   }
+  // Where the face's true reading may be this step: within bound() of face_error, and within
+  // the readings at its model reading and edge peaks moved by the bound's residual part
+  // (SampleStore::reading_upper, reading_lower), often a narrower range where the reading ramps
+  // in its peaks. [face_error, face_error] where bound() is 0.
+  struct Range {
+    double lo, hi;
+  };
+  Range reading_range(const SampleStore& samples, Face f) const {
+    const double e = samples.face_error(f), b = bound(samples, f);
+    if (!(b > 0.0)) return {e - b, e + b};
+    return {std::max(e - b, samples.reading_lower(f, rise_[f.idx])),
+            std::min(e + b, samples.reading_upper(f, rise_[f.idx]))};
+  }
 
   std::size_t skipped() const { return skipped_; }
   // Faces the last select() measured only because their corners travelled or slid too far.
@@ -206,6 +225,7 @@ class ErrorPredictor final : public MeshListener {
   std::vector<Coefficients> reference_;
   std::vector<std::uint8_t> has_reference_;
   std::vector<double> bound_;
+  std::vector<double> rise_;  // bound_ before SampleStore::reading_gain (reading_range)
   // Per face, its corners' largest summed move since its reference measurement (an upper
   // bound of how far any corner got from where it was then).
   std::vector<float> travel_;

@@ -311,6 +311,24 @@ double SampleStore::reading_gain(Face f, double bound) const {
   return 1.0;
 }
 
+double SampleStore::reading_upper(Face f, double rise) const {
+  // evaluate_face's reading, max(model, peaks - kPeakRamp * max(0, floor - model)) from the
+  // search's start on and the model below it, does not decrease in the model (the search
+  // starting only adds a maximum) nor in the peaks.
+  const double model = model_error_[f.idx] + rise;
+  if (!(peak_floor_ > 0.0 && model >= search_start_)) return model;
+  const double peaks = peak_error_[f.idx];
+  return peak_reading(model, peaks >= 0.0 ? peaks + rise : (1.0 + largest_under_reading_) * model);
+}
+
+double SampleStore::reading_lower(Face f, double rise) const {
+  // The reading is at least the model's; where the model stays at or above the search's start
+  // the face is searched and its peaks count as they then read.
+  const double model = model_error_[f.idx] - rise, peaks = peak_error_[f.idx];
+  if (!(peak_floor_ > 0.0 && model >= search_start_ && peaks >= 0.0)) return model;
+  return peak_reading(model, peaks - rise);
+}
+
 double SampleStore::edge_peaks(const SurfaceProbe& probe, const Vec3 p[3], const Vec2 uv[3]) {
   double worst = 0.0;
   for (int e = 0; e < 3; ++e) worst = std::max(worst, read_edge(probe, p, uv, e).peak);

@@ -59,6 +59,16 @@ class SampleStore final : public MeshListener {
   // edge peaks, while both stay within `bound` of their last values: 1 + kPeakRamp where the
   // ramped peaks could then be the reading below the floor, 1 elsewhere.
   double reading_gain(Face f, double bound) const;
+  // The largest reading the face can have once its model reading and its edge peaks each rose
+  // by at most `rise` from their last values (reading_gain's assumption; an unsearched face's
+  // peaks under-read by the most assumed): the reading itself at those raised values, since it
+  // does not decrease in either. At most face_error + reading_gain * rise, and often well
+  // below: where the model is the reading, the ramped peaks must rise by the ramp's share of
+  // the gap before they count (ErrorPredictor::select).
+  double reading_upper(Face f, double rise) const;
+  // The smallest reading it can have once both fell by at most `rise` (an unsearched face's
+  // peaks by any amount).
+  double reading_lower(Face f, double rise) const;
   double density() const { return density_; }
   // The measurement rotation. Each face has a turn every kRotation steps (its slot's id %
   // kRotation when the slot was made, kept through a renumbering, so that no face waits longer

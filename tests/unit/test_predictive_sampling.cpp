@@ -60,28 +60,44 @@ std::vector<double> dense_face_errors(const Mesh48& mesh, const Surface& surface
 // How much of its bound each face sampling skipped this step used: max over those faces of
 // |error now - last measured error| / bound, where "error now" is what full sampling would
 // have measured this step (the same samples, evaluated afresh on a copy of the store). Above
-// 1 where a skipped face's error escaped its bound.
-double bound_usage(const test::SceneRun& run) {
+// 1 where a skipped face's error escaped its bound. `range`: the same against the face's
+// reading range (ErrorPredictor::reading_range: the part of it on the side the error moved),
+// above 1 where the error left it; `narrower`: skipped faces whose range is narrower than
+// last error +- bound on some side (the range is not the bound again).
+struct Usage {
+  double bound = 0.0, range = 0.0;
+  std::size_t narrower = 0;
+};
+Usage skipped_usage(const test::SceneRun& run) {
   const Mesh48& mesh = run.adapter->mesh();
   const SampleStore& samples = run.adapter->samples();
+  const ErrorPredictor& predictor = run.adapter->predictor();
   std::vector<Face> skipped;
   for (Face f : mesh.live_faces())
-    if (run.adapter->predictor().bound(samples, f) > 0.0) skipped.push_back(f);
+    if (predictor.bound(samples, f) > 0.0) skipped.push_back(f);
   SampleStore fresh = samples;
   fresh.evaluate_faces(mesh, SurfaceProbe(*run.surface), skipped);
-  double usage = 0.0;
+  Usage usage;
   for (Face f : skipped) {
     // A face whose pattern fresh measuring densified is measured on other samples.
     if (fresh.count(f) != samples.count(f)) continue;
-    usage = std::max(usage, std::abs(fresh.face_error(f) - samples.face_error(f)) /
-                                run.adapter->predictor().bound(samples, f));
+    const double now = fresh.face_error(f), then = samples.face_error(f);
+    const double bound = predictor.bound(samples, f);
+    usage.bound = std::max(usage.bound, std::abs(now - then) / bound);
+    const ErrorPredictor::Range r = predictor.reading_range(samples, f);
+    usage.narrower += r.hi < then + bound || r.lo > then - bound;
+    // (then - lo and hi - then are positive: the reading is inside its own range)
+    usage.range = std::max(
+        usage.range, now >= then ? (now - then) / (r.hi - then) : (then - now) / (then - r.lo));
   }
   return usage;
 }
 
 struct FrameCheck {
   double worst_ratio = 0.0;        // max over frames of dense error / (T + eps)
-  double bound_usage = 0.0;        // max over frames of bound_usage()
+  double bound_usage = 0.0;        // max over frames of skipped_usage().bound
+  double range_usage = 0.0;        // and of its .range
+  std::size_t narrower = 0;        // summed .narrower
   double measured_fraction = 0.0;  // faces measured by sampling / faces, over all steps
   std::vector<std::size_t> triangles;
 };
@@ -112,7 +128,10 @@ FrameCheck run_animation(const std::string& scene, Sampling sampling, double thr
     const std::vector<double> dense = dense_face_errors(mesh, *run.surface, kDensePoints);
     for (Face f : mesh.live_faces())
       check.worst_ratio = std::max(check.worst_ratio, dense[f.idx] / band);
-    check.bound_usage = std::max(check.bound_usage, bound_usage(run));
+    const Usage usage = skipped_usage(run);
+    check.bound_usage = std::max(check.bound_usage, usage.bound);
+    check.range_usage = std::max(check.range_usage, usage.range);
+    check.narrower += usage.narrower;
   }
   check.measured_fraction = measured / faces;
   return check;
@@ -129,6 +148,10 @@ TEST_P(PredictiveAnimation, EveryFrameWithinToleranceAsWithFullSampling) {
   EXPECT_LE(full.worst_ratio, kSlack) << scene;
   // Every skipped face's error stayed within its bound of its last measurement.
   EXPECT_LE(predictive.bound_usage, 1.0) << scene;
+  // And within its reading range, which decides the split (ErrorPredictor::select) and the
+  // star's current error (Adapter::star_error_range); narrower than the bound on many faces.
+  EXPECT_LE(predictive.range_usage, 1.0) << scene;
+  EXPECT_GT(predictive.narrower, 0u) << scene;
   // Not vacuous: prediction did skip faces (at 100 steps over [0, 1] about half; many more
   // with smaller steps, bench_adapter.cpp), except on the sphere, whose radius grows by 2.7%
   // every step, so that every face's error does too. Full sampling measured every face.
@@ -145,9 +168,12 @@ TEST_P(PredictiveAnimation, EveryFrameWithinToleranceAsWithFullSampling) {
   RecordProperty("measured_fraction", std::to_string(predictive.measured_fraction));
   RecordProperty("worst_ratio", std::to_string(predictive.worst_ratio));
   RecordProperty("bound_usage", std::to_string(predictive.bound_usage));
-  std::printf("%s: measured %.3f of faces, dense/(T+eps) %.3f (full %.3f), bound usage %.3f\n",
-              scene.c_str(), predictive.measured_fraction, predictive.worst_ratio, full.worst_ratio,
-              predictive.bound_usage);
+  RecordProperty("range_usage", std::to_string(predictive.range_usage));
+  std::printf(
+      "%s: measured %.3f of faces, dense/(T+eps) %.3f (full %.3f), bound usage %.3f, range usage "
+      "%.3f (%zu narrower)\n",
+      scene.c_str(), predictive.measured_fraction, predictive.worst_ratio, full.worst_ratio,
+      predictive.bound_usage, predictive.range_usage, predictive.narrower);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, PredictiveAnimation,
@@ -177,7 +203,9 @@ TEST(PredictiveSampling, SuddenJumpInTimeFallsBackToMeasuring) {
     const StepStats p = predictive.adapter->step(0.9);
     const StepStats f = full.adapter->step(0.9);
     EXPECT_GT(static_cast<double>(p.faces_measured) / faces, 2 * small_share) << scene;
-    EXPECT_LE(bound_usage(predictive), 1.0) << scene;
+    const Usage usage = skipped_usage(predictive);
+    EXPECT_LE(usage.bound, 1.0) << scene;
+    EXPECT_LE(usage.range, 1.0) << scene;
     // The same decisions; but a face full sampling measured may have had its pattern
     // densified where prediction skipped it: the two then read other samples there until
     // prediction measures it (PredictiveDecisions below). Seen (when patterns were numbered in
