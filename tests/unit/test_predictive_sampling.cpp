@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -86,9 +87,11 @@ Usage skipped_usage(const test::SceneRun& run) {
     usage.bound = std::max(usage.bound, std::abs(now - then) / bound);
     const ErrorPredictor::Range r = predictor.reading_range(samples, f);
     usage.narrower += r.hi < then + bound || r.lo > then - bound;
-    // (then - lo and hi - then are positive: the reading is inside its own range)
-    usage.range = std::max(
-        usage.range, now >= then ? (now - then) / (r.hi - then) : (then - now) / (then - r.lo));
+    // A range that does not hold the last reading itself counts as escaped.
+    const bool holds = r.lo <= then && then <= r.hi;
+    usage.range = std::max(usage.range, !holds        ? std::numeric_limits<double>::infinity()
+                                        : now >= then ? (now - then) / (r.hi - then)
+                                                      : (then - now) / (then - r.lo));
   }
   return usage;
 }
