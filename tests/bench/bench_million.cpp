@@ -16,6 +16,13 @@
 // product, add it into the three corners' sums: compute_ring_centroids, find_bad_faces),
 // timed in the mesh's own numbering (as the adapter keeps it), in the same mesh renumbered
 // afresh along the Morton curve, and in random order (a numbering without locality).
+//
+// BM_MillionStepEvaluations: how much of that step is evaluating the surface, the part no
+// bookkeeping can remove. The same scene through CountingSurface (counting_surface.h) counts the
+// evaluations of each kind a step asks for; each kind is then timed alone at the mesh's
+// vertices with the same threads, and their sum per step is the step's evaluation time, to be
+// set against BM_MillionTriangleStep's median (the counting wrapper's atomics would slow a
+// timed step, so this benchmark does not time one).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -29,6 +36,7 @@
 #include "core/adapt/adapter.h"
 #include "core/mesh/spatial_order.h"
 #include "core/surface/scene_registry.h"
+#include "counting_surface.h"
 #include "process_cpu_time.h"
 
 namespace dynamesh {
@@ -41,7 +49,9 @@ double median(std::vector<double> v) {
 
 // Capsule-bend adapted at t = 0.5 to `threshold`, then stepped twice by 1e-3 (to 0.502).
 struct MillionScene {
-  explicit MillionScene(double threshold) : surface(make_scene("capsule-bend")) {
+  explicit MillionScene(double threshold,
+                        std::unique_ptr<Surface> scene = make_scene("capsule-bend"))
+      : surface(std::move(scene)) {
     surface->set_time(0.5);
     AdaptOptions o;
     o.threshold = threshold;
@@ -121,6 +131,82 @@ void BM_MillionTriangleStep(benchmark::State& state, double threshold) {
 }
 
 BENCHMARK_CAPTURE(BM_MillionTriangleStep, capsule_T9e - 6, 9e-6)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+
+// Seconds per call of one kind of evaluation, each thread taking its share of `points` (the
+// best of three sweeps: what the evaluations cost when the step makes them, not the load).
+template <class Evaluate>
+double seconds_per_call(const std::vector<Vec3>& points, const Evaluate& evaluate) {
+  const auto n = static_cast<std::int64_t>(points.size());
+  double best = 1e300;
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    double sink = 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) reduction(+ : sink)
+    for (std::int64_t i = 0; i < n; ++i) sink += evaluate(points[static_cast<std::size_t>(i)]);
+    best = std::min(best,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(sink);
+  }
+  return best / static_cast<double>(n);
+}
+
+void BM_MillionStepEvaluations(benchmark::State& state, double threshold) {
+  std::unique_ptr<Surface> scene = make_scene("capsule-bend");
+  auto* implicit = dynamic_cast<ImplicitSurface*>(scene.get());
+  if (implicit == nullptr) {
+    state.SkipWithError("capsule-bend is not implicit");
+    return;
+  }
+  scene.release();
+  auto owned = std::make_unique<CountingSurface>(std::unique_ptr<ImplicitSurface>(implicit));
+  CountingSurface& counting = *owned;
+  MillionScene million(threshold, std::move(owned));
+  using Kind = CountingSurface::Kind;
+  std::array<double, CountingSurface::kKinds> per_step{};
+  double steps = 0.0;
+  for (auto _ : state) {
+    counting.reset_counts();
+    million.adapter->step(million.t += 1e-3);
+    for (int k = 0; k < CountingSurface::kKinds; ++k)
+      per_step[static_cast<std::size_t>(k)] += static_cast<double>(counting.count(Kind(k)));
+    steps += 1.0;
+  }
+  for (double& c : per_step) c /= steps;
+  // Each kind timed at the vertices, on the surface at the last step's time.
+  const ImplicitSurface& s = counting.wrapped();
+  std::vector<Vec3> points;
+  for (const Vertex v : million.adapter->mesh().live_vertices())
+    points.push_back(million.adapter->mesh().position(v));
+  std::array<double, CountingSurface::kKinds> cost{};
+  cost[Kind::kValue] = seconds_per_call(points, [&](const Vec3& p) { return s.value(p); });
+  cost[Kind::kValueGradient] = seconds_per_call(points, [&](const Vec3& p) {
+    Vec3 g;
+    return s.value_gradient(p, g) + g[0];
+  });
+  cost[Kind::kHessian] = seconds_per_call(points, [&](const Vec3& p) {
+    Vec3 g;
+    Mat3 h;
+    return s.value_gradient_hessian(p, g, h) + h(0, 0);
+  });
+  cost[Kind::kToRest] = seconds_per_call(points, [&](const Vec3& p) { return s.to_rest(p)[0]; });
+  cost[Kind::kFromRest] =
+      seconds_per_call(points, [&](const Vec3& p) { return s.from_rest(p)[0]; });
+  const char* names[CountingSurface::kKinds] = {"value", "value_gradient", "hessian", "to_rest",
+                                                "from_rest"};
+  double seconds = 0.0;
+  for (std::size_t k = 0; k < per_step.size(); ++k) {
+    state.counters[std::string(names[k]) + "_per_step"] = per_step[k];
+    state.counters[std::string(names[k]) + "_ns"] = 1e9 * cost[k];
+    seconds += per_step[k] * cost[k];
+  }
+  state.counters["triangles"] = static_cast<double>(million.adapter->mesh().n_faces());
+  state.counters["vertices"] = static_cast<double>(points.size());
+  state.counters["evaluation_ms_per_step"] = 1e3 * seconds;
+}
+
+BENCHMARK_CAPTURE(BM_MillionStepEvaluations, capsule_T9e - 6, 9e-6)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 
