@@ -10,10 +10,12 @@
 // program that links the engine therefore starts OpenMP with a passive wait policy (idle
 // threads sleep at once), unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT
 // themselves. libgomp reads its environment when it is loaded, before main() and before any
-// static constructor of ours, so parallel.cpp sets the variable from the executable's
-// .preinit_array, which the dynamic loader runs before any shared library's initialiser.
-// engine_wait_policy() reports what libgomp was given (and, being referenced from the
-// Adapter, keeps that object file in every program that adapts meshes).
+// static constructor of ours, and a variable set from the executable's .preinit_array (which
+// the dynamic loader runs first) does not reach it: glibc's environment is not set up yet
+// there. So parallel.cpp's .preinit_array entry executes the program once more with the
+// variable added (DYNAMESH_OMP_WAIT_POLICY=engine marks it as the engine's). engine_wait_policy()
+// reports what libgomp was given (and, being referenced from the Adapter, keeps that object file
+// in every program that adapts meshes).
 #pragma once
 
 #include <omp.h>
@@ -26,8 +28,9 @@ namespace dynamesh {
 
 inline constexpr std::int64_t kParallelMin = 4096;
 
-// "passive" when the engine chose the policy; the user's OMP_WAIT_POLICY / GOMP_SPINCOUNT
-// otherwise ("user: ..."), or "default" when the executable could not set it.
+// "passive" when the engine chose the policy; "user" when the user's OMP_WAIT_POLICY or
+// GOMP_SPINCOUNT decide it; "default" when the engine could not set it (libgomp's own: workers
+// spin a few milliseconds after each parallel loop), as under valgrind.
 const char* engine_wait_policy();
 
 // An order-keeping parallel filter, for the step's scans over every face or vertex slot whose
