@@ -1,4 +1,5 @@
 // dynamesh-cli: the batch command line. Bad input: one line on stderr, exit status 2.
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <string>
@@ -7,6 +8,7 @@
 #include "app/cli/run_command.h"
 #include "app/cli/run_options.h"
 #include "core/io/atomic_file.h"
+#include "core/parallel.h"
 #include "core/surface/scene_registry.h"
 
 namespace {
@@ -43,7 +45,13 @@ int main(int argc, char** argv) {
   remove_partial_files_on_signal();
   try {
     if (!args.empty() && args[0] == "--version") {
-      std::cout << "dynamesh-cli " << DYNAMESH_VERSION << "\n";
+      // What libgomp read at start-up: the environment, which the engine's own start may have
+      // completed (core/parallel.h).
+      const char* policy = std::getenv("OMP_WAIT_POLICY");
+      std::cout << "dynamesh-cli " << DYNAMESH_VERSION << "\n"
+                << "OpenMP threads: " << omp_get_max_threads()
+                << ", wait policy: " << engine_wait_policy()
+                << " (OMP_WAIT_POLICY=" << (policy ? policy : "unset") << ")\n";
       return 0;
     }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {

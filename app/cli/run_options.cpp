@@ -302,7 +302,8 @@ Usage:
   dynamesh-cli run [options]     run a scene over time; see 'dynamesh-cli run --help'
   dynamesh-cli scenes            list the scenes and their parameters
   dynamesh-cli --help            this text
-  dynamesh-cli --version         the version
+  dynamesh-cli --version         the version, and the threads and OpenMP wait policy
+                                 a run would use (OMP_NUM_THREADS sets the threads)
 
 Example:
   dynamesh-cli run --scene sinc --steps 100 --threshold 0.004 --stats sinc.csv \

@@ -342,5 +342,28 @@ TEST(CliOptions, VersionIsPrinted) {
   EXPECT_EQ(r.out.rfind("dynamesh-cli ", 0), 0u) << r.out;
 }
 
+// The program a user runs sets libgomp's passive wait policy itself (core/parallel.h: it
+// executes itself once more with the variable added), and keeps a policy the user set. Run
+// from an environment without the variable (the test binary's own has it, from its own start).
+TEST(CliOptions, VersionSaysTheWaitPolicyTheProgramRunsWith) {
+  const std::string cli = test::shell_quoted(test::cli_path());
+  auto version = [&](const std::string& env) {
+    const std::string out = (test::cli_scratch("wait_policy") / "version.txt").string();
+    const std::string line =
+        "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u DYNAMESH_OMP_WAIT_POLICY " + env + " " + cli +
+        " --version > " + test::shell_quoted(out);
+    EXPECT_EQ(std::system(line.c_str()), 0) << line;
+    return test::slurp_file(out);
+  };
+  const std::string plain = version("");
+  EXPECT_NE(plain.find("wait policy: passive (OMP_WAIT_POLICY=passive)\n"), std::string::npos)
+      << plain;
+  const std::string active = version("OMP_WAIT_POLICY=active");
+  EXPECT_NE(active.find("wait policy: user (OMP_WAIT_POLICY=active)\n"), std::string::npos)
+      << active;
+  const std::string one = version("OMP_NUM_THREADS=1");
+  EXPECT_NE(one.find("OpenMP threads: 1,"), std::string::npos) << one;
+}
+
 }  // namespace
 }  // namespace dynamesh
