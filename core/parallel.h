@@ -27,6 +27,10 @@
 namespace dynamesh {
 
 inline constexpr std::int64_t kParallelMin = 4096;
+// The same for loops whose every iteration costs microseconds (measuring a face: a dozen and
+// more surface evaluations). With kParallelMin, the ~2,200 faces a twist step measures (15,000
+// triangles, predictive sampling) were measured on one thread while the other slept.
+inline constexpr std::int64_t kParallelMinCostly = 64;
 
 // "passive" when the engine chose the policy; "user" when the user's OMP_WAIT_POLICY or
 // GOMP_SPINCOUNT decide it; "default" when the engine could not set it (libgomp's own: workers
