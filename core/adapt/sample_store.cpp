@@ -424,7 +424,10 @@ void SampleStore::evaluate_faces(const Mesh48& mesh, const SurfaceProbe& probe,
     unresolved.assign(pending.size(), 0);
     keep_.assign(pending.size(), 0);
     kept_.resize(pending.size());
-#pragma omp parallel for schedule(dynamic, 16) if (n > kParallelMinCostly)
+    // Chunks of 256 faces where there are many (their prefetching runs ahead along a chunk), of
+    // 16 where a few hundred or thousand are measured, so that both threads get some.
+    const int chunk = n > kParallelMin ? 256 : 16;
+#pragma omp parallel for schedule(dynamic, chunk) if (n > kParallelMinCostly)
     for (std::int64_t i = 0; i < n; ++i) {
       // A face's vertices lie anywhere in memory: fetch those of a face a few ahead while
       // this one is measured, and its samples.
