@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <iterator>
+#include <string_view>
 
 namespace dynamesh {
 namespace {
@@ -15,10 +15,6 @@ const char* g_policy = "default";
 // so that the new image knows the policy was the engine's and not the user's.
 constexpr char kMarker[] = "DYNAMESH_OMP_WAIT_POLICY=engine";
 constexpr char kPassive[] = "OMP_WAIT_POLICY=passive";
-
-bool starts_with(const char* s, const char* prefix) {
-  return std::strncmp(s, prefix, std::strlen(prefix)) == 0;
-}
 
 // Runs from the executable's .preinit_array (see parallel.h), before libgomp reads its
 // environment. A variable cannot simply be added here: glibc's environ is not set up yet at
@@ -33,10 +29,11 @@ void choose_wait_policy(int, char** argv, char** envp) {
   bool marked = false, passive = false, user = false, valgrind = false;
   std::size_t count = 0;
   for (char** e = envp; e && *e; ++e, ++count) {
-    marked = marked || std::strcmp(*e, kMarker) == 0;
-    passive = passive || std::strcmp(*e, kPassive) == 0;
-    user = user || starts_with(*e, "OMP_WAIT_POLICY=") || starts_with(*e, "GOMP_SPINCOUNT=");
-    valgrind = valgrind || (starts_with(*e, "LD_PRELOAD=") && std::strstr(*e, "vgpreload"));
+    const std::string_view v(*e);
+    marked = marked || v == kMarker;
+    passive = passive || v == kPassive;
+    user = user || v.starts_with("OMP_WAIT_POLICY=") || v.starts_with("GOMP_SPINCOUNT=");
+    valgrind = valgrind || (v.starts_with("LD_PRELOAD=") && v.find("vgpreload") != v.npos);
   }
   if (marked && passive) {
     g_policy = "passive";

@@ -11,30 +11,27 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <string>
 
 #include "core/parallel.h"
+#include "tests/bench/process_cpu_time.h"
 
 namespace dynamesh {
 namespace {
 
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-bool user_chose_a_policy() {
+// Why the engine's policy is not this process's to check, or null when it is.
+const char* not_the_engines_policy() {
   const char* marker = std::getenv("DYNAMESH_OMP_WAIT_POLICY");
   const bool engine = marker != nullptr && std::strcmp(marker, "engine") == 0;
-  return !engine && (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT"));
+  if (!engine && (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")))
+    return "the user's OMP_WAIT_POLICY / GOMP_SPINCOUNT decide";
+  if (std::string(engine_wait_policy()) == "default")
+    return "the engine could not set the policy here (under valgrind?)";
+  return nullptr;
 }
 
 TEST(WaitPolicy, EngineSetsPassiveWhereLibgompSeesIt) {
-  if (user_chose_a_policy()) GTEST_SKIP() << "the user's OMP_WAIT_POLICY / GOMP_SPINCOUNT decide";
-  if (std::string(engine_wait_policy()) == "default")
-    GTEST_SKIP() << "the engine could not set the policy here (under valgrind?)";
+  if (const char* why = not_the_engines_policy()) GTEST_SKIP() << why;
   EXPECT_STREQ(engine_wait_policy(), "passive");
   // What libgomp read when it was loaded: the process's environment (the re-executed image's).
   const char* policy = std::getenv("OMP_WAIT_POLICY");
@@ -43,9 +40,7 @@ TEST(WaitPolicy, EngineSetsPassiveWhereLibgompSeesIt) {
 }
 
 TEST(WaitPolicy, WorkersSleepAfterAParallelLoop) {
-  if (user_chose_a_policy()) GTEST_SKIP() << "the user's OMP_WAIT_POLICY / GOMP_SPINCOUNT decide";
-  if (std::string(engine_wait_policy()) == "default")
-    GTEST_SKIP() << "the engine could not set the policy here (under valgrind?)";
+  if (const char* why = not_the_engines_policy()) GTEST_SKIP() << why;
   // After each loop the main thread sleeps 20 ms: the CPU the process uses meanwhile is its
   // workers' (spinning: libgomp's default spins ~300,000 times, several ms, before sleeping).
   constexpr int kLoops = 10;
