@@ -690,15 +690,24 @@ void Adapter::weld_pass() {
   // for weld_error's reading at any ceiling: where that reading would be below its ceiling it
   // is `known` itself; above, it is a lower bound that only tells "above the ceiling", as
   // `known` does, and the guard's second reading below would be `known` again.
+  // The restored edge's midpoint is weld_error's first reading and a lower bound of it. Where
+  // it reads above both the guard's limit and the ceiling at any current error (the criteria's
+  // ceilings do not fall as the current error grows), no weld is allowed and the guard welds
+  // none: the candidate is rejected without the star's range or angles, the same key weld_key
+  // gives it (most candidates of an adapted mesh: welding would coarsen it a level).
+  constexpr double kNoWeld = std::numeric_limits<double>::quiet_NaN();
+  const double no_ceiling = std::numeric_limits<double>::infinity();
   auto weld_key = [&](const DiamondChange& plan, bool& ambiguous, double& known) {
+    const bool exact = !std::isnan(known);
+    ambiguous = false;
+    const double midpoint = exact ? 0.0 : SampleStore::weld_midpoint_error(mesh_, probe_, plan);
+    if (midpoint > guard_limit && midpoint > weld_ceiling(plan, no_ceiling)) return kNoWeld;
     const ErrorRange current = star_error_range(plan);
     const double ceiling = weld_ceiling(plan, current.hi);
-    const bool exact = !std::isnan(known);
-    double error = exact ? known : samples_.weld_error(mesh_, probe_, plan, ceiling);
+    double error = exact ? known : samples_.weld_error(mesh_, probe_, plan, ceiling, midpoint);
     if (error <= ceiling) known = error;
     const bool allowed = weld_allowed(plan, error, current.hi);
     ambiguous = allowed && current.lo < current.hi && !weld_allowed(plan, error, current.lo);
-    constexpr double kNoWeld = std::numeric_limits<double>::quiet_NaN();
     if (ambiguous) return kNoWeld;
     if (allowed) return pathological_star(plan) ? -1.0 - error : error;
     if (error > guard_limit || !pathological_star(plan)) return kNoWeld;
@@ -706,7 +715,8 @@ void Adapter::weld_pass() {
     // post-weld error (the ceiling is below T + eps when the star reads below (T + eps) / 1.05).
     // The guard must see the error itself up to its own limit, else it welds a star that
     // reads above T + eps once welded (and is split straight back). Rare: measured again.
-    if (error > ceiling && !exact) error = samples_.weld_error(mesh_, probe_, plan, guard_limit);
+    if (error > ceiling && !exact)
+      error = samples_.weld_error(mesh_, probe_, plan, guard_limit, midpoint);
     return error <= guard_limit ? -1.0 - error : kNoWeld;
   };
   // An ambiguous star (its key NaN, its post-weld error `known` in full: ambiguity needs the

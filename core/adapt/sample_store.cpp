@@ -472,12 +472,16 @@ void SampleStore::evaluate_all(const Mesh48& mesh, const SurfaceProbe& probe) {
   evaluate_faces(mesh, probe, mesh.live_faces());
 }
 
-double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
-                               const DiamondChange& plan, double ceiling) const {
+double SampleStore::weld_midpoint_error(const Mesh48& mesh, const SurfaceProbe& probe,
+                                        const DiamondChange& plan) {
   const auto& pv0 = plan.halves[0].parent_vertices;
   const Vec3 p0[3] = {mesh.position(pv0[0]), mesh.position(pv0[1]), mesh.position(pv0[2])};
   const Vec2 uv0[3] = {mesh.uv(pv0[0]), mesh.uv(pv0[1]), mesh.uv(pv0[2])};
-  const double midpoint = probe.error_at(p0, uv0, Vec3(0.0, 0.5, 0.5));
+  return probe.error_at(p0, uv0, Vec3(0.0, 0.5, 0.5));
+}
+
+double SampleStore::weld_error(const Mesh48& mesh, const SurfaceProbe& probe,
+                               const DiamondChange& plan, double ceiling, double midpoint) const {
   if (midpoint > ceiling) return midpoint;
   double worst = midpoint;
   for (int h = 0; h < plan.count; ++h) {

@@ -123,7 +123,17 @@ class SampleStore final : public MeshListener {
   // half above `ceiling` ends the measurement early: the result is then a lower bound above
   // `ceiling`, which is all a weld decision needs.
   double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
-                    double ceiling = std::numeric_limits<double>::infinity()) const;
+                    double ceiling = std::numeric_limits<double>::infinity()) const {
+    return weld_error(mesh, probe, plan, ceiling, weld_midpoint_error(mesh, probe, plan));
+  }
+  // The same, the restored edge's midpoint already read (weld_midpoint_error): a caller that
+  // rejects most welds on that one reading pays for it once.
+  double weld_error(const Mesh48& mesh, const SurfaceProbe& probe, const DiamondChange& plan,
+                    double ceiling, double midpoint) const;
+  // The error at the restored edge's midpoint, where the removed vertex sat: a lower bound of
+  // weld_error's reading at any ceiling. One evaluation.
+  static double weld_midpoint_error(const Mesh48& mesh, const SurfaceProbe& probe,
+                                    const DiamondChange& plan);
   // New patterns drawn from now on take their jitter from (seed, epoch, the face's corners'
   // positions, size) alone, so that two runs making the same changes to the mesh draw the same
   // patterns whatever else they measured, and whatever the mesh's numbering. The adapter sets it to
