@@ -588,9 +588,10 @@ void Adapter::sampling() {
                         carried_valid_ ? &carried_ : nullptr);
   carried_valid_ = false;
   stats_.evaluations_reused += predictor_.reused_evaluations();
-  predictor_.select(
-      mesh_, probe_, samples_,
-      [&](Face f, double error) { return split_urgency(f, error, false) > 1.0; }, to_measure_);
+  predictor_.select(mesh_, probe_, samples_,
+                    {split_error_floor(false),
+                     [&](Face f, double error) { return split_urgency(f, error, false) > 1.0; }},
+                    to_measure_);
   measure(to_measure_);
   stats_.faces_measured += to_measure_.size();
 }
@@ -606,6 +607,12 @@ double Adapter::split_urgency(Face f, double error, bool initial) const {
   for (const auto& c : criteria_)
     if (c->applies_to(mesh_, f)) urgency = std::max(urgency, c->split_urgency(q));
   return urgency;
+}
+
+double Adapter::split_error_floor(bool initial) const {
+  double floor = std::numeric_limits<double>::infinity();
+  for (const auto& c : criteria_) floor = std::min(floor, c->split_error_floor(initial));
+  return floor;
 }
 
 double Adapter::weld_ceiling(const DiamondChange& plan, double current) const {
@@ -857,10 +864,12 @@ void Adapter::split_pass(bool initial) {
   if (bound) tracker_->grow(mesh_);
   // The urgencies in parallel, the queue filled in face order as a serial scan fills it (the
   // queue breaks ties by its insertion history, not by face).
+  const double floor = split_error_floor(initial);
   urgent_collector_.collect(static_cast<std::int64_t>(mesh_.face_capacity()), urgent_,
                             [&](std::int64_t i, std::pair<double, Face>& hit) {
                               const Face f(static_cast<std::uint32_t>(i));
-                              if (!mesh_.is_alive(f)) return false;
+                              if (!mesh_.is_alive(f) || !(samples_.face_error(f) > floor))
+                                return false;
                               hit = {split_urgency(f, samples_.face_error(f), initial), f};
                               return hit.first > 1.0;
                             });

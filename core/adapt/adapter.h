@@ -117,6 +117,9 @@ class Adapter {
   void relax();
   // Largest urgency of the applicable criteria if f's error were `error`.
   double split_urgency(Face f, double error, bool initial) const;
+  // An error at or below which split_urgency is at most 1 for every face (the criteria's
+  // Criterion::split_error_floor): faces reading no more are not asked about.
+  double split_error_floor(bool initial) const;
   // `error`: the post-weld error; `current`: the star's error now.
   bool weld_allowed(const DiamondChange& plan, double error, double current) const;
   // The range the star's current error lies in: exact unless some of its faces were not

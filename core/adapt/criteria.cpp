@@ -17,6 +17,11 @@ double GeometricErrorCriterion::weld_error_ceiling(double current_error) const {
   return std::max(weld_below_, std::min(split_above_, kNoGain * current_error));
 }
 
+// error / bound <= 1 exactly where error <= bound (a correctly rounded division is monotone).
+double GeometricErrorCriterion::split_error_floor(bool initial) const {
+  return initial ? threshold_ : split_above_;
+}
+
 bool GeometricErrorCriterion::allows_weld(const WeldQuery& q) const {
   return q.error < weld_below_ || (q.error <= split_above_ && q.error <= kNoGain * q.current_error);
 }

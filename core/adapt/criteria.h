@@ -50,6 +50,12 @@ class Criterion {
   virtual double weld_error_ceiling(double /*current_error*/) const {
     return std::numeric_limits<double>::infinity();
   }
+  // An error at or below which split_urgency is at most 1 whatever the face: the adapter skips
+  // the criteria for such faces (most faces of an adapted mesh, at every pass over them).
+  // -infinity (the default): the error alone never rules a split out.
+  virtual double split_error_floor(bool /*initial*/) const {
+    return -std::numeric_limits<double>::infinity();
+  }
   // Whether the criterion speaks for this face / weld at all (regions).
   virtual bool applies_to(const Mesh48&, Face) const { return true; }
   virtual bool applies_to(const Mesh48&, const DiamondChange&) const { return true; }
@@ -89,6 +95,7 @@ class GeometricErrorCriterion final : public Criterion {
   GeometricErrorCriterion(double threshold, double epsilon);
   std::string name() const override { return "error"; }
   double weld_error_ceiling(double current_error) const override;
+  double split_error_floor(bool initial) const override;
   double split_urgency(const SplitQuery& q) const override;
   bool allows_weld(const WeldQuery& q) const override;
 
@@ -128,6 +135,10 @@ class HalfSpaceCriterion final : public Criterion {
   bool allows_weld(const WeldQuery& q) const override { return inner_->allows_weld(q); }
   double weld_error_ceiling(double current_error) const override {
     return inner_->weld_error_ceiling(current_error);
+  }
+  // Outside the half-space the criterion asks for nothing (urgency 0), inside as its inner one.
+  double split_error_floor(bool initial) const override {
+    return inner_->split_error_floor(initial);
   }
   bool applies_to(const Mesh48& mesh, Face f) const override;
   bool applies_to(const Mesh48& mesh, const DiamondChange& plan) const override;

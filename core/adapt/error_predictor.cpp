@@ -212,8 +212,7 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
 }
 
 void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
-                            const SampleStore& samples,
-                            const std::function<bool(Face, double)>& would_split,
+                            const SampleStore& samples, const SplitTest& would_split,
                             std::vector<Face>& measure) {
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());

@@ -147,11 +147,19 @@ class ErrorPredictor final : public MeshListener {
   }
   void grow_for(const Mesh48& mesh) { grow(mesh); }
 
-  // The faces to measure this step. `would_split(f, error)`: whether some criterion would
-  // split f at that error. Stores every skipped face's bound (bound()). `samples` names the
-  // step begin_step() was given (SampleStore::set_step): the faces on their turn are measured.
+  // Whether some criterion would split face f at an error. `asks` is called only above
+  // `floor`, an error at or below which none would (Adapter::split_error_floor): most skipped
+  // faces of an adapted mesh read below it, and are judged without a call.
+  struct SplitTest {
+    double floor = -std::numeric_limits<double>::infinity();
+    std::function<bool(Face, double)> asks;
+    bool operator()(Face f, double error) const { return error > floor && asks(f, error); }
+  };
+  // The faces to measure this step. Stores every skipped face's bound (bound()). `samples`
+  // names the step begin_step() was given (SampleStore::set_step): the faces on their turn are
+  // measured.
   void select(const Mesh48& mesh, const SurfaceProbe& probe, const SampleStore& samples,
-              const std::function<bool(Face, double)>& would_split, std::vector<Face>& measure);
+              const SplitTest& would_split, std::vector<Face>& measure);
 
   // After faces were measured: records their reference coefficients (their bound is 0).
   void record(const Mesh48& mesh, const SurfaceProbe& probe, const std::vector<Face>& faces);

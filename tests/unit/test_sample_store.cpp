@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
 #include <random>
 
 #include "core/adapt/criteria.h"
@@ -146,6 +149,39 @@ TEST(GeometricErrorCriterion, WeldCeilingBoundsEveryAllowedWeld) {
     const double ceiling = c.weld_error_ceiling(current);
     EXPECT_FALSE(c.allows_weld({mesh, plan, ceiling * (1 + 1e-9) + 1e-15, current}));
   }
+}
+
+// The adapter asks no criterion about a face reading at or below the criteria's split floor
+// (Adapter::split_error_floor): that is sound only if no error there asks for a split.
+TEST(GeometricErrorCriterion, SplitFloorBoundsEveryRequestedSplit) {
+  const GeometricErrorCriterion c(1e-3, 2.5e-4);
+  const Mesh48 mesh;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 2e-3);
+  for (const bool initial : {false, true}) {
+    const double floor = c.split_error_floor(initial);
+    auto urgency = [&](double error) { return c.split_urgency({mesh, Face(), error, initial}); };
+    int asked = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double error = u(rng);
+      if (urgency(error) <= 1.0) continue;
+      ++asked;
+      EXPECT_GT(error, floor) << error << " initial " << initial;
+    }
+    EXPECT_GT(asked, 1000);
+    // At the floor no split, and the next double up asks for one: the floor is the bound itself.
+    EXPECT_LE(urgency(floor), 1.0);
+    EXPECT_GT(urgency(std::nextafter(floor, 1.0)), 1.0);
+  }
+  EXPECT_EQ(c.split_error_floor(false), 1e-3 + 2.5e-4);
+  EXPECT_EQ(c.split_error_floor(true), 1e-3);
+  // A criterion restricted to a half-space asks for nothing outside it: its inner floor holds.
+  const HalfSpaceCriterion half(std::make_unique<GeometricErrorCriterion>(1e-3, 2.5e-4),
+                                Vec3::UnitX(), 0.0);
+  EXPECT_EQ(half.split_error_floor(false), c.split_error_floor(false));
+  // An edge length asks for splits whatever the error.
+  EXPECT_EQ(EdgeLengthCriterion(0.1).split_error_floor(false),
+            -std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
