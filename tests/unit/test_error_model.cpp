@@ -134,24 +134,36 @@ TEST(EdgePeak, FindsAQuarticResidualsPeak) {
 TEST(EdgePeak, ScalarResidualReadsExactlyAsItsNorm) {
   std::mt19937_64 rng(3);
   std::normal_distribution<double> n(0.0, 1.0);
+  int ties = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const double scale = std::pow(10.0, -12.0 + 12.0 * (trial % 7) / 6.0);
-    const double a = scale * n(rng), b = scale * n(rng), c = scale * n(rng);
+    double a = scale * n(rng), b = scale * n(rng), c = scale * n(rng);
+    if (trial % 50 == 0) a = b = c = 0.0;  // no peak: the default one
     const auto r = [&](double t) { return Vec3(t * (1 - t) * (a + t * b + t * t * c), 0, 0); };
-    const Vec3 quarter = r(0.25), half = r(0.5), three_quarters = r(0.75);
+    const Vec3 quarter = r(0.25), half = r(0.5);
+    // Every fifth edge symmetric about its middle: off the middle, its peak is tied.
+    const Vec3 three_quarters = trial % 5 == 1 ? quarter : r(0.75);
     const EdgePeak peak = edge_peak(quarter, half, three_quarters);
-    // The lattice and the interpolant as error_model.h states them, with Eigen's norm.
+    // The lattice and the interpolant as error_model.h states them, with Eigen's norm, scanned
+    // for the first largest value and a later point equal to it.
     const Vec3 q0 = half * 4.0, qm = quarter * (16.0 / 3.0), qp = three_quarters * (16.0 / 3.0);
     const Vec3 slope = 0.5 * (qp - qm), bend = 0.5 * (qp + qm) - q0;
     double best = 0.0, best_t = 0.5;
+    bool tied = false;
     for (int k = 1; k < 64; ++k) {
       const double t = k / 64.0, s = 4.0 * t - 2.0;
       const double value = t * (1.0 - t) * (q0 + s * slope + s * s * bend).norm();
-      if (value > best) best = value, best_t = t;
+      if (value > best)
+        best = value, best_t = t, tied = false;
+      else if (value == best && value > 0.0)
+        tied = true;
     }
     EXPECT_EQ(peak.value, best) << trial;
     EXPECT_EQ(peak.t, best_t) << trial;
+    EXPECT_EQ(peak.tied, tied) << trial;
+    ties += tied;
   }
+  EXPECT_GT(ties, 50);
 }
 
 // Read from its other end (the face across the edge), an edge's lattice values are the same,
