@@ -868,9 +868,10 @@ void Adapter::split_pass(bool initial) {
   urgent_collector_.collect(static_cast<std::int64_t>(mesh_.face_capacity()), urgent_,
                             [&](std::int64_t i, std::pair<double, Face>& hit) {
                               const Face f(static_cast<std::uint32_t>(i));
-                              if (!mesh_.is_alive(f) || !(samples_.face_error(f) > floor))
-                                return false;
-                              hit = {split_urgency(f, samples_.face_error(f), initial), f};
+                              if (!mesh_.is_alive(f)) return false;
+                              const double error = samples_.face_error(f);
+                              if (!(error > floor)) return false;
+                              hit = {split_urgency(f, error, initial), f};
                               return hit.first > 1.0;
                             });
   std::priority_queue<SplitEntry> queue;

@@ -61,7 +61,7 @@ TEST_P(PredictorCurvature, RadiusIsTheExactLargestRatioOverTheEdges) {
   ErrorPredictor predictor;
   predictor.begin_step(mesh, probe, mesh.positions(), 1);
   std::vector<Face> measure;
-  predictor.select(mesh, probe, samples, {0.0, [](Face, double) { return false; }}, measure);
+  predictor.select(mesh, probe, samples, {.asks = [](Face, double) { return false; }}, measure);
   EXPECT_EQ(measure.size(), mesh.n_faces());  // none has a reference yet
   const double largest = brute_force_curvature(mesh, static_cast<const ImplicitSurface&>(*surface));
   ASSERT_GT(largest, 0.0);
