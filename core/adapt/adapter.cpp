@@ -958,6 +958,8 @@ void Adapter::renumber_if_scattered() {
     return;
   Stopwatch clock;
   renumber(spatial_renumbering(mesh_));
+  // Neighbours now have neighbouring ids: each turn of the rotation measures patches of them.
+  samples_.group_turns_in_order();
   stats_.renumbered = true;
   stats_.seconds.renumber += clock.lap();
 }

@@ -111,8 +111,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   peak_error_.resize(capacity, -1.0);
   edge_slots_.resize(3 * capacity);
   peak_checked_.resize(capacity, 0);
-  for (std::size_t f = rotation_.size(); f < capacity; ++f)
-    rotation_.push_back(static_cast<std::uint8_t>(f % kRotation));
+  rotation_.grow(capacity);
 }
 
 void SampleStore::clear_face(std::uint32_t f) {
@@ -216,7 +215,7 @@ void SampleStore::reset(const Mesh48& mesh) {
   model_error_.clear();
   peak_error_.clear();
   peak_checked_.clear();
-  rotation_.clear();
+  rotation_.reset();
   grow_faces(mesh.face_capacity());
   for (Face f : mesh.live_faces()) draw_pattern(mesh, f.idx);
 }
@@ -654,7 +653,7 @@ void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(model_error_, r.face, r.n_faces);
   renumber_elements(peak_error_, r.face, r.n_faces);
   renumber_elements(peak_checked_, r.face, r.n_faces);
-  renumber_elements(rotation_, r.face, r.n_faces);
+  rotation_.renumber(r);
   unresolved_.clear();  // scratch of one call
   keep_.clear();
   compact();

@@ -22,6 +22,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/adapt/measurement_rotation.h"
 #include "core/adapt/surface_probe.h"
 #include "core/mesh/mesh48.h"
 
@@ -70,17 +71,20 @@ class SampleStore final : public MeshListener {
   // peaks by any amount).
   double reading_lower(Face f, double rise) const;
   double density() const { return density_; }
-  // The measurement rotation. Each face has a turn every kRotation steps (its slot's id %
-  // kRotation when the slot was made, kept through a renumbering, so that no face waits longer
-  // across one either); set_step() names the step whose turn it is. Predictive sampling
-  // (ErrorPredictor) measures every face on its turn, full sampling every face every step: both
-  // measure it then, and so the interior peak is looked for only then (evaluate_faces).
+  // The measurement rotation (measurement_rotation.h): each face has a turn every kRotation
+  // steps, and set_step() names the step whose turn it is. Predictive sampling (ErrorPredictor)
+  // measures every face on its turn, full sampling every face every step: both measure it
+  // then, and so the interior peak is looked for only then (evaluate_faces).
   // set_every_turn(): every face's turn (the initial frame, where both modes measure them all:
   // so that it is settled, a fixed point of a static surface, Adapter::initialize).
-  static constexpr std::uint32_t kRotation = 16;
-  void set_step(std::uint64_t step) { turn_ = static_cast<std::uint8_t>(step % kRotation); }
-  void set_every_turn() { turn_ = kEveryTurn; }
-  bool on_turn(Face f) const { return turn_ == kEveryTurn || rotation_[f.idx] == turn_; }
+  static constexpr std::uint32_t kRotation = MeasurementRotation::kRotation;
+  void set_step(std::uint64_t step) { rotation_.set_step(step); }
+  void set_every_turn() { rotation_.set_every_turn(); }
+  const MeasurementRotation& rotation() const { return rotation_; }
+  // The turns in blocks of consecutive face ids (MeasurementRotation::group_in_order): after a
+  // renumbering along a space-filling curve, each turn measures patches of neighbours.
+  void group_turns_in_order() { rotation_.group_in_order(); }
+  bool on_turn(Face f) const { return rotation_.on_turn(f); }
 
   // Errors of every sample of the given faces (all live faces) against the surface, in
   // parallel; updates each face's error. A face whose samples the quadratic model cannot
@@ -244,8 +248,6 @@ class SampleStore final : public MeshListener {
   double largest_under_reading_ = 0.0;
   double search_start_ = 0.0;  // faces read below it are not searched (set_peak_search)
   double interior_ceiling_ = std::numeric_limits<double>::infinity();  // (peak_check_due)
-  static constexpr std::uint8_t kEveryTurn = 0xff;
-  std::uint8_t turn_ = kEveryTurn;  // set_step, set_every_turn
   std::uint64_t seed_;
   std::uint64_t epoch_ = 0;              // set_pattern_epoch
   std::uint64_t patterns_drawn_ = 0;     // sample_changes()
@@ -274,7 +276,7 @@ class SampleStore final : public MeshListener {
   bool share_edges_ = false;  // this pass may share them (new_pass)
   std::uint64_t edge_peaks_shared_ = 0;
   std::vector<std::uint8_t> peak_checked_;  // peak_check_due: the interior peak was looked for
-  std::vector<std::uint8_t> rotation_;      // each face's turn (on_turn)
+  MeasurementRotation rotation_;            // each face's turn (on_turn)
   std::vector<std::uint8_t> unresolved_;    // per-face flags (evaluate_faces, refresh_patterns)
   std::vector<std::uint8_t> keep_;          // evaluate_faces: a sample to append, per face
   std::vector<Sample> kept_;                // and that sample
