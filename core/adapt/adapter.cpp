@@ -517,6 +517,7 @@ void Adapter::normal_correction() {
   const bool keep = implicit && options_.sampling == Sampling::kPredictive;
   if (keep) predictor_.grow_for(mesh_);
   // One sub-step only: the slide is measured over the whole step (ErrorPredictor::begin_step).
+  carried_from_rest_ = carry;
   carried_valid_ = keep && carry && stats_.substeps <= 1;
   if (carried_valid_) carried_.resize(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024) reduction(+ : failures) if (n > kParallelMin)
@@ -555,6 +556,10 @@ void Adapter::tangential_correction() {
   // switched on here: its effect on sinc's counts and cost is issue 17's to measure.
   SmoothingOptions smoothing = options_.smoothing;
   smoothing.reuse_frames = smoothing.reuse_frames && stats_.substeps == 1 && !probe_.parametric();
+  // Each vertex's rest point is the one it was carried from (normal_correction): frame reuse
+  // reads it instead of mapping the vertex back.
+  if (carried_from_rest_) smoothing.rest_points = &rest_points_;
+  carried_from_rest_ = false;
   const SmoothingResult r = smooth_tangentially(mesh_, surface_, smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
   if (!probe_.parametric() && options_.sampling == Sampling::kPredictive) {

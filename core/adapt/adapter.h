@@ -230,6 +230,7 @@ class Adapter {
   // Rest-space points of the vertices before the surface's time changed (surfaces with a
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
+  bool carried_from_rest_ = false;  // this sub-step's vertices were carried from rest_points_
   // Where each vertex's material point went this step, before the projection and smoothing
   // moved it on (predictive sampling on a surface with a rest map: ErrorPredictor's slide);
   // valid when carried_valid_.

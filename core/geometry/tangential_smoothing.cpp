@@ -290,6 +290,7 @@ Weights compute_rings_and_frames(const Mesh48& mesh, const Surface& surface,
   std::size_t reused = 0;
   const auto* implicit = dynamic_cast<const ImplicitSurface*>(&surface);
   const bool material = w.reuse && implicit && implicit->has_rest_map();
+  const bool known_rest = o.rest_points && o.rest_points->size() >= mesh.vertex_capacity();
 #pragma omp parallel for schedule(dynamic, 512) reduction(min   \
                                                           : lo) \
     reduction(max                                               \
@@ -300,7 +301,9 @@ Weights compute_rings_and_frames(const Mesh48& mesh, const Surface& surface,
     if (!mesh.is_alive(v)) continue;
     const auto k = static_cast<std::size_t>(i);
     Frame& f = w.frame[k];
-    const Vec3 rest = material ? implicit->to_rest(mesh.position(v)) : Vec3::Zero();
+    const Vec3 rest = !material    ? Vec3::Zero()
+                      : known_rest ? (*o.rest_points)[k]
+                                   : implicit->to_rest(mesh.position(v));
     if (w.reuse && frame_reusable(w, k, mesh.position(v), material ? &rest : nullptr)) {
       f.k = w.cached[k].k;
       ++reused;

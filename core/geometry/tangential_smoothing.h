@@ -40,6 +40,12 @@ struct SmoothingOptions {
   // the surface under it barely moved (the bound is in tangential_smoothing.cpp,
   // frame_reusable); false evaluates every frame every iteration.
   bool reuse_frames = true;
+  // On a surface with a rest map, each vertex's rest-space point where the caller knows it
+  // (by vertex id): the adapter's, from which it carried the vertices in this step (their
+  // projection afterwards removes rounding and drift only, far below the reuse test's 0.05 of
+  // an edge). Frame reuse then reads it instead of mapping every vertex back (a bend map's
+  // atan2 and square root per vertex). Null: mapped back.
+  const std::vector<Vec3>* rest_points = nullptr;
 };
 
 struct SmoothingResult {

@@ -112,5 +112,46 @@ TEST(FrameReuseScale, FramesAreReusedWhereTheMaterialCarriesTheVertices) {
   EXPECT_LT(worst, 2.0 * 0.05 * edge);
 }
 
+// SmoothingOptions::rest_points: the rest points the caller carried the vertices from are
+// read instead of mapping each vertex back. Given the right ones, the smoothing is the one that
+// maps back (the same frames reused, the same positions); given rest points off by a tenth of
+// an edge to one side and then the other, it sees every vertex slide a fifth of an edge each
+// time and reuses no frame.
+TEST(FrameReuseScale, RestPointsGivenByTheCallerAreRead) {
+  TurningSphere s;
+  const Mesh48 start = fine_mesh(s, 4);
+  const double edge =
+      (start.position(start.vertex(Face(0), 0)) - start.position(start.vertex(Face(0), 1))).norm();
+  Mesh48 mapped = start, given = start, shifted = start;
+  SmoothingWorkspace mapped_work, given_work, shifted_work;
+  SmoothingOptions o;
+  std::size_t reused = 0, reused_shifted = 0;
+  for (int call = 0; call < 12; ++call) {
+    std::vector<Vec3> rest(given.vertex_capacity()), off(shifted.vertex_capacity());
+    for (Vertex v : given.live_vertices()) rest[v.idx] = s.to_rest(given.position(v));
+    for (Vertex v : shifted.live_vertices())
+      off[v.idx] = s.to_rest(shifted.position(v)) + Vec3(call % 2 ? 0.1 * edge : -0.1 * edge, 0, 0);
+    const Mat3 before = s.rotation;
+    turn(s, given, 0.004);
+    s.rotation = before;
+    turn(s, shifted, 0.004);
+    s.rotation = before;
+    turn(s, mapped, 0.004);
+    SmoothingOptions with_rest = o, with_off = o;
+    with_rest.rest_points = &rest;
+    with_off.rest_points = &off;
+    const SmoothingResult a = smooth_tangentially(mapped, s, o, &mapped_work);
+    const SmoothingResult b = smooth_tangentially(given, s, with_rest, &given_work);
+    const SmoothingResult c = smooth_tangentially(shifted, s, with_off, &shifted_work);
+    EXPECT_EQ(a.frames_reused, b.frames_reused) << call;
+    for (Vertex v : mapped.live_vertices())
+      ASSERT_EQ(mapped.position(v), given.position(v)) << "call " << call;
+    reused += b.frames_reused;
+    reused_shifted += c.frames_reused;
+  }
+  EXPECT_GT(reused, 6 * start.n_vertices());
+  EXPECT_EQ(reused_shifted, 0u);
+}
+
 }  // namespace
 }  // namespace dynamesh
