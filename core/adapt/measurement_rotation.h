@@ -8,6 +8,8 @@
 // consecutive ids (turn_block), so that the faces measured on one turn are patches of
 // neighbours instead of every sixteenth face: an edge between two measured faces has its
 // peaks read once for both (SampleStore::shared_edge_peaks), and the pass walks memory in order.
+// At 10^6 triangles (capsule-bend, two threads) the sampling phase fell from ~185-225 ms to
+// ~140-175 ms, though measuring's instructions fell by only 4.5%: mostly cache misses saved.
 //
 // A face takes its new turn only where that does not make it wait longer than kRotation steps
 // since it was last on turn; otherwise once its old turn has come (pending). set_step()
