@@ -230,7 +230,9 @@ class Adapter {
   // Rest-space points of the vertices before the surface's time changed (surfaces with a
   // rest map: SurfaceProbe::follows_material); reused step to step.
   std::vector<Vec3> rest_points_;
-  bool carried_from_rest_ = false;  // this sub-step's vertices were carried from rest_points_
+  // This sub-step's vertices were carried from rest_points_ (normal_correction). A flag, not
+  // derived from rest_points_: relax() smooths without a carry, where they would be stale.
+  bool carried_from_rest_ = false;
   // Where each vertex's material point went this step, before the projection and smoothing
   // moved it on (predictive sampling on a surface with a rest map: ErrorPredictor's slide);
   // valid when carried_valid_.
