@@ -108,6 +108,10 @@ class Adapter {
   // measured against).
   void measure(const std::vector<Face>& faces);
   void weld_pass();
+  // Measures the skipped faces of weld_candidates_' ambiguous stars, all at once, and
+  // decides their keys (weld_pass).
+  template <class Key>
+  void decide_ambiguous_stars(Key&& weld_key);
   void split_pass(bool initial);
   // Weld and split passes at the current surface until neither changes the mesh (a few
   // rounds): the settled state initialize() publishes, a fixed point of step() on a static
@@ -210,6 +214,12 @@ class Adapter {
   OrderedCollector<WeldCandidate> weld_collector_;
   std::vector<WeldCandidate> weld_candidates_;
   std::vector<Face> star_skipped_;  // measure_star()'s list, reused star to star
+  // weld_pass()'s ambiguous candidates: each one's index in weld_candidates_ and where its
+  // star's skipped faces begin in ambiguous_faces_, whose sample counts before they were
+  // measured are in ambiguous_counts_ (decide_ambiguous_stars). Reused step to step.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ambiguous_stars_;
+  std::vector<Face> ambiguous_faces_;
+  std::vector<std::uint32_t> ambiguous_counts_;
   // split_pass()'s faces with an urgency above 1 (and it), in face order, reused pass to pass.
   OrderedCollector<std::pair<double, Face>> urgent_collector_;
   std::vector<std::pair<double, Face>> urgent_;
