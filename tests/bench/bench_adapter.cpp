@@ -12,6 +12,7 @@
 
 #include "core/adapt/adapter.h"
 #include "core/surface/scene_registry.h"
+#include "median.h"
 #include "process_cpu_time.h"
 
 namespace dynamesh {
@@ -120,10 +121,6 @@ void BM_Sampling(benchmark::State& state, const std::string& name, double thresh
     measured += static_cast<double>(st.faces_measured);
     faces += static_cast<double>(st.triangles);
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   state.counters["triangles"] = static_cast<double>(s.adapter->mesh().n_faces());
   state.counters["median_step_ms"] = 1e3 * median(step);
   state.counters["median_project_ms"] = 1e3 * median(project);
@@ -178,10 +175,6 @@ void BM_SamplingInterleaved(benchmark::State& state, const std::string& name, do
     wall_ratio.push_back(wall[0].back() / wall[1].back());
     cpu_ratio.push_back(cpu[0].back() / cpu[1].back());
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   state.counters["triangles"] = static_cast<double>(predictive.adapter->mesh().n_faces());
   state.counters["same_triangles"] =
       predictive.adapter->mesh().n_faces() == full.adapter->mesh().n_faces() ? 1.0 : 0.0;

@@ -13,6 +13,7 @@
 #include "core/adapt/adapter.h"
 #include "core/parallel.h"
 #include "core/surface/scene_registry.h"
+#include "median.h"
 
 namespace dynamesh {
 namespace {
@@ -34,11 +35,6 @@ class BusyThread {
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 // Steps t by 1e-3 around 0.5 with and without a busy thread, alternating blocks of steps
 // so that both see the same drift of the machine's other load.

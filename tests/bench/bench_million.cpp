@@ -40,15 +40,11 @@
 #include "core/mesh/spatial_order.h"
 #include "core/surface/scene_registry.h"
 #include "counting_surface.h"
+#include "median.h"
 #include "process_cpu_time.h"
 
 namespace dynamesh {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 // Capsule-bend adapted at t = 0.5 to `threshold`, then stepped twice by 1e-3 (to 0.502).
 struct MillionScene {
