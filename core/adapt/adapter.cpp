@@ -812,16 +812,18 @@ template <class Key>
 void Adapter::decide_ambiguous_stars(Key&& weld_key) {
   ambiguous_stars_.clear();
   ambiguous_faces_.clear();
-  DiamondChange plan;
+  AmbiguousStar star;
   for (std::size_t i = 0; i < weld_candidates_.size(); ++i) {
     WeldCandidate& c = weld_candidates_[i];
     if (!c.ambiguous) continue;
+    DiamondChange& plan = star.plan;
     if (!mesh_.plan_weld(Vertex(c.vertex), plan)) {  // (the mesh has not changed since)
       c = WeldCandidate{std::numeric_limits<double>::quiet_NaN(), c.vertex, false};
       continue;
     }
-    ambiguous_stars_.emplace_back(static_cast<std::uint32_t>(i),
-                                  static_cast<std::uint32_t>(ambiguous_faces_.size()));
+    star.candidate = static_cast<std::uint32_t>(i);
+    star.first_face = static_cast<std::uint32_t>(ambiguous_faces_.size());
+    ambiguous_stars_.push_back(star);
     for (int h = 0; h < plan.count; ++h)
       for (Face f : plan.halves[h].children)
         if (predictor_.bound(samples_, f) > 0.0) ambiguous_faces_.push_back(f);
@@ -834,18 +836,17 @@ void Adapter::decide_ambiguous_stars(Key&& weld_key) {
   const auto n = static_cast<std::int64_t>(ambiguous_stars_.size());
 #pragma omp parallel for schedule(dynamic, 16) if (n > kParallelMinCostly)
   for (std::int64_t j = 0; j < n; ++j) {
-    const auto [index, first] = ambiguous_stars_[static_cast<std::size_t>(j)];
-    const std::size_t last = j + 1 < n ? ambiguous_stars_[static_cast<std::size_t>(j + 1)].second
-                                       : ambiguous_faces_.size();
-    WeldCandidate& c = weld_candidates_[index];
+    const AmbiguousStar& s = ambiguous_stars_[static_cast<std::size_t>(j)];
+    const std::size_t last = j + 1 < n
+                                 ? ambiguous_stars_[static_cast<std::size_t>(j + 1)].first_face
+                                 : ambiguous_faces_.size();
+    WeldCandidate& c = weld_candidates_[s.candidate];
     bool changed = false;
-    for (std::size_t k = first; k < last; ++k)
+    for (std::size_t k = s.first_face; k < last; ++k)
       changed = changed || samples_.count(ambiguous_faces_[k]) != ambiguous_counts_[k];
     double known = changed ? std::numeric_limits<double>::quiet_NaN() : c.key;
-    DiamondChange star;
-    mesh_.plan_weld(Vertex(c.vertex), star);
     bool ambiguous = false;
-    c.key = weld_key(star, ambiguous, known);
+    c.key = weld_key(s.plan, ambiguous, known);
     c.ambiguous = false;
   }
 }

@@ -214,10 +214,14 @@ class Adapter {
   OrderedCollector<WeldCandidate> weld_collector_;
   std::vector<WeldCandidate> weld_candidates_;
   std::vector<Face> star_skipped_;  // measure_star()'s list, reused star to star
-  // weld_pass()'s ambiguous candidates: each one's index in weld_candidates_ and where its
-  // star's skipped faces begin in ambiguous_faces_, whose sample counts before they were
-  // measured are in ambiguous_counts_ (decide_ambiguous_stars). Reused step to step.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> ambiguous_stars_;
+  // weld_pass()'s ambiguous candidates: each one's index in weld_candidates_, its weld's plan
+  // and where its star's skipped faces begin in ambiguous_faces_, whose sample counts before
+  // they were measured are in ambiguous_counts_ (decide_ambiguous_stars). Reused step to step.
+  struct AmbiguousStar {
+    std::uint32_t candidate = 0, first_face = 0;
+    DiamondChange plan;
+  };
+  std::vector<AmbiguousStar> ambiguous_stars_;
   std::vector<Face> ambiguous_faces_;
   std::vector<std::uint32_t> ambiguous_counts_;
   // split_pass()'s faces with an urgency above 1 (and it), in face order, reused pass to pass.
