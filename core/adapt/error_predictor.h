@@ -226,6 +226,7 @@ class ErrorPredictor final : public MeshListener {
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;
   std::vector<std::uint64_t> frame_step_;   // step each frame was computed at (+1; 0 = never)
+  std::vector<Vertex> unframed_;            // record()'s scratch: vertices without a frame
   std::vector<float> moved_;                // each vertex's displacement this step
   std::vector<float> slid_;                 // and its slide over the surface (begin_step)
   std::vector<PointEvaluation> evaluated_;  // note()

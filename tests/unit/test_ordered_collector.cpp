@@ -19,10 +19,11 @@ TEST(OrderedCollector, ListsTheSerialLoopsItemsInItsOrder) {
   const int threads_before = omp_get_max_threads();
   OrderedCollector<std::int64_t> collector;
   std::vector<std::int64_t> out;
-  // Below kParallelMin (serial), just above it, across many blocks, and smaller again (the
-  // block lists kept from the larger call must not leak into the smaller one).
-  for (const std::int64_t n :
-       {std::int64_t{1000}, kParallelMin + 1, std::int64_t{1'000'003}, std::int64_t{50'000}}) {
+  // Below kParallelMin (serial), just above it (blocks of the smallest size), between that and
+  // the largest block (blocks of n / 16), across many blocks, and smaller again (the block
+  // lists kept from the larger call must not leak into the smaller one).
+  for (const std::int64_t n : {std::int64_t{1000}, kParallelMin + 1, std::int64_t{12'345},
+                               std::int64_t{1'000'003}, std::int64_t{50'000}}) {
     std::vector<std::int64_t> want;  // the serial loop's list (items other than the indices)
     for (std::int64_t i = 0; i < n; ++i)
       if (kept(i, n)) want.push_back(3 * i);
