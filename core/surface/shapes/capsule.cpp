@@ -5,30 +5,13 @@
 
 namespace dynamesh {
 
-namespace {
-
-// q - c(q): the offset from the nearest point of the segment.
-Vec3 offset(const Capsule& c, const Vec3& q) {
-  return {q.x() - std::clamp(q.x(), -c.half_length, c.half_length), q.y(), q.z()};
-}
-
-}  // namespace
-
 double Capsule::value(const Vec3& q) const {
-  return offset(*this, q).norm() - radius;
-}
-
-double Capsule::value_gradient(const Vec3& q, Vec3& gradient) const {
-  const Vec3 d = offset(*this, q);
-  const double dist = d.norm();
-  // On the segment the distance has no gradient; zero tells projection to stop there.
-  gradient = dist > 0.0 ? Vec3(d / dist) : Vec3::Zero();
-  return dist - radius;
+  return offset(q).norm() - radius;
 }
 
 ScalarJet Capsule::jet(const Vec3& q) const {
   ScalarJet j;
-  const Vec3 d = offset(*this, q);
+  const Vec3 d = offset(q);
   const double dist = d.norm();
   j.value = dist - radius;
   if (!(dist > 0.0)) return j;
