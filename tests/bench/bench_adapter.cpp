@@ -164,13 +164,22 @@ void BM_SamplingInterleaved(benchmark::State& state, const std::string& name, do
     full.adapter->step(t);
   }
   std::vector<double> wall[2], cpu[2], wall_ratio, cpu_ratio;
+  // Each phase's wall time per mode: run with one and with two threads, they show which phase
+  // gains less from the second core (session 25: the weld pass's candidates on the twist, one
+  // block of an order-keeping scan, took as long on two threads as on one).
+  constexpr int kPhases = 5;
+  const char* phase_names[kPhases] = {"project", "smooth", "sample", "weld", "split"};
+  std::vector<double> phase[2][kPhases];
   for (auto _ : state) {
     t += 1e-3;
     for (int mode = 0; mode < 2; ++mode) {
       Adapter& a = *(mode == 0 ? predictive : full).adapter;
       const double cpu_before = process_cpu_seconds();
-      wall[mode].push_back(a.step(t).seconds.total);
+      const PhaseSeconds& p = a.step(t).seconds;
+      wall[mode].push_back(p.total);
       cpu[mode].push_back(process_cpu_seconds() - cpu_before);
+      const double seconds[kPhases] = {p.project, p.smooth, p.sample, p.weld, p.split};
+      for (int k = 0; k < kPhases; ++k) phase[mode][k].push_back(seconds[k]);
     }
     wall_ratio.push_back(wall[0].back() / wall[1].back());
     cpu_ratio.push_back(cpu[0].back() / cpu[1].back());
@@ -184,6 +193,10 @@ void BM_SamplingInterleaved(benchmark::State& state, const std::string& name, do
   state.counters["pair_ratio"] = median(wall_ratio);
   state.counters["cpu_ratio"] = median(cpu[0]) / median(cpu[1]);
   state.counters["cpu_pair_ratio"] = median(cpu_ratio);
+  for (int mode = 0; mode < 2; ++mode)
+    for (int k = 0; k < kPhases; ++k)
+      state.counters[std::string(mode == 0 ? "predictive_" : "full_") + phase_names[k] + "_ms"] =
+          1e3 * median(phase[mode][k]);
 }
 
 BENCHMARK_CAPTURE(BM_SamplingInterleaved, twist, std::string("twist"), 1e-3)
