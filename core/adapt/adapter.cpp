@@ -638,11 +638,15 @@ Adapter::ErrorRange Adapter::star_error_range(const DiamondChange& plan) const {
   return r;
 }
 
-void Adapter::measure_star(const DiamondChange& plan) {
-  star_skipped_.clear();  // no allocation per star (the weld pass measures stars one at a time)
+void Adapter::append_skipped_faces(const DiamondChange& plan, std::vector<Face>& out) const {
   for (int h = 0; h < plan.count; ++h)
     for (Face f : plan.halves[h].children)
-      if (predictor_.bound(samples_, f) > 0.0) star_skipped_.push_back(f);
+      if (predictor_.bound(samples_, f) > 0.0) out.push_back(f);
+}
+
+void Adapter::measure_star(const DiamondChange& plan) {
+  star_skipped_.clear();  // no allocation per star (the weld pass measures stars one at a time)
+  append_skipped_faces(plan, star_skipped_);
   measure(star_skipped_);
 }
 
@@ -824,9 +828,7 @@ void Adapter::decide_ambiguous_stars(Key&& weld_key) {
     star.candidate = static_cast<std::uint32_t>(i);
     star.first_face = static_cast<std::uint32_t>(ambiguous_faces_.size());
     ambiguous_stars_.push_back(star);
-    for (int h = 0; h < plan.count; ++h)
-      for (Face f : plan.halves[h].children)
-        if (predictor_.bound(samples_, f) > 0.0) ambiguous_faces_.push_back(f);
+    append_skipped_faces(plan, ambiguous_faces_);
   }
   if (ambiguous_stars_.empty()) return;
   ambiguous_counts_.resize(ambiguous_faces_.size());

@@ -133,8 +133,10 @@ class Adapter {
     double lo, hi;
   };
   ErrorRange star_error_range(const DiamondChange& plan) const;
-  // Measures the star's faces that were skipped this step (their error only known within a
-  // bound), so that star_error_range becomes exact.
+  // Appends the star's faces that were skipped this step (their error only known within a
+  // bound) to `out`.
+  void append_skipped_faces(const DiamondChange& plan, std::vector<Face>& out) const;
+  // Measures them, so that star_error_range becomes exact.
   void measure_star(const DiamondChange& plan);
   // The largest post-weld error any applicable criterion could allow for a star whose error
   // is now `current` (pruning bound).
