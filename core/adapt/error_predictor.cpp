@@ -99,9 +99,16 @@ void ErrorPredictor::invalidate() {
   radius_.fill(std::numeric_limits<double>::infinity());
 }
 
+void ErrorPredictor::use_tangents(const SurfaceProbe& probe) {
+  if (probe.parametric() == parametric_) return;
+  parametric_ = probe.parametric();
+  if (parametric_) tangents_.resize(frame_.size());
+}
+
 void ErrorPredictor::grow(const Mesh48& mesh) {
   if (frame_.size() < mesh.vertex_capacity()) {
     frame_.resize(mesh.vertex_capacity());
+    if (parametric_) tangents_.resize(mesh.vertex_capacity());
     frame_step_.resize(mesh.vertex_capacity(), 0);
     moved_.resize(mesh.vertex_capacity(), 0.0f);
     slid_.resize(mesh.vertex_capacity(), 0.0f);
@@ -122,8 +129,7 @@ void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& prob
   if (probe.parametric()) {
     const auto& s = static_cast<const ParametricSurface&>(probe.surface());
     const ParametricDerivatives d = s.derivatives(mesh.uv(v));
-    frame.a = d.su;
-    frame.b = d.sv;
+    tangents_[v.idx] = Tangents{d.su, d.sv};
     const Vec3 n = d.su.cross(d.sv);
     const double length = n.norm();
     frame.normal = length > 0 ? Vec3(n / length) : Vec3::Zero();
@@ -136,8 +142,7 @@ void ErrorPredictor::refresh_vertex(const Mesh48& mesh, const SurfaceProbe& prob
     if (known) g = e.gradient;
     const double value = known ? e.value : s.value_gradient(mesh.position(v), g);
     const double norm = g.norm();
-    frame.a = norm > 0 ? Vec3(g / norm) : Vec3::Zero();
-    frame.normal = frame.a;
+    frame.normal = norm > 0 ? Vec3(g / norm) : Vec3::Zero();
     frame.offset = norm > 0 ? std::abs(value) / norm : std::numeric_limits<double>::infinity();
   }
   frame_step_[v.idx] = step_ + 1;
@@ -147,6 +152,7 @@ void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
                                 const std::vector<Vec3>& start_positions, std::uint64_t step,
                                 std::uint64_t epoch, const std::vector<Vec3>* material_positions) {
   step_ = step;
+  use_tangents(probe);
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
   std::size_t reused = 0;
@@ -195,11 +201,12 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
     if (probe.parametric()) {
       const auto& s = static_cast<const ParametricSurface&>(probe.surface());
       const Vec2 d = s.unwrap_near(mesh.uv(j), mesh.uv(i)) - mesh.uv(i);
-      start = edge - (fi.a * d[0] + fi.b * d[1]);
-      end = edge - (fj.a * d[0] + fj.b * d[1]);
+      const Tangents &ti = tangents_[i.idx], &tj = tangents_[j.idx];
+      start = edge - (ti.su * d[0] + ti.sv * d[1]);
+      end = edge - (tj.su * d[0] + tj.sv * d[1]);
     } else {
-      start = Vec3(edge.dot(fi.a), 0.0, 0.0);
-      end = Vec3(edge.dot(fj.a), 0.0, 0.0);
+      start = Vec3(edge.dot(fi.normal), 0.0, 0.0);
+      end = Vec3(edge.dot(fj.normal), 0.0, 0.0);
     }
     const Vec3 c = quadratic_part(start, end), d = cubic_part(start, end);
     out.length[e] = static_cast<float>(edge.norm());
@@ -214,6 +221,7 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
 void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
                             const SampleStore& samples, const SplitTest& would_split,
                             std::vector<Face>& measure) {
+  use_tangents(probe);
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   flags_.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
@@ -293,8 +301,8 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
           float length[3];
           cubic = Change{};
           for (int e = 0; e < 3; ++e) {
-            const double start = edge[e].dot(frame_[v[(e + 1) % 3].idx].a);
-            const double end = edge[e].dot(frame_[v[(e + 2) % 3].idx].a);
+            const double start = edge[e].dot(frame_[v[(e + 1) % 3].idx].normal);
+            const double end = edge[e].dot(frame_[v[(e + 2) % 3].idx].normal);
             x[e] =
                 static_cast<double>(static_cast<float>(quadratic_part(start, end))) - then.c[e][0];
             const double d = std::abs(
@@ -358,6 +366,7 @@ void ErrorPredictor::after_split(Mesh48& mesh, const DiamondChange& change) {
 
 void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(frame_, r.vertex, r.n_vertices);
+  if (parametric_) renumber_elements(tangents_, r.vertex, r.n_vertices);
   renumber_elements(frame_step_, r.vertex, r.n_vertices);
   renumber_elements(moved_, r.vertex, r.n_vertices);
   renumber_elements(slid_, r.vertex, r.n_vertices);
@@ -372,6 +381,7 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
 
 void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,
                             const std::vector<Face>& faces) {
+  use_tangents(probe);
   grow(mesh);
   // Vertices born this step (splits) have no frame yet: listed here (each once: marked as
   // listed), their frames computed in parallel below.
