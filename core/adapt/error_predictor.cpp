@@ -99,10 +99,12 @@ void ErrorPredictor::invalidate() {
   radius_.fill(std::numeric_limits<double>::infinity());
 }
 
-void ErrorPredictor::use_tangents(const SurfaceProbe& probe) {
+void ErrorPredictor::keep_parametric_data(const SurfaceProbe& probe) {
   if (probe.parametric() == parametric_) return;
   parametric_ = probe.parametric();
-  if (parametric_) tangents_.resize(frame_.size());
+  if (!parametric_) return;
+  tangents_.resize(frame_.size());
+  vector_reference_.resize(reference_.size());
 }
 
 void ErrorPredictor::grow(const Mesh48& mesh) {
@@ -116,6 +118,7 @@ void ErrorPredictor::grow(const Mesh48& mesh) {
   }
   if (reference_.size() < mesh.face_capacity()) {
     reference_.resize(mesh.face_capacity());
+    if (parametric_) vector_reference_.resize(mesh.face_capacity());
     has_reference_.resize(mesh.face_capacity(), 0);
     bound_.resize(mesh.face_capacity(), 0.0);
     rise_.resize(mesh.face_capacity(), 0.0);
@@ -152,7 +155,7 @@ void ErrorPredictor::begin_step(const Mesh48& mesh, const SurfaceProbe& probe,
                                 const std::vector<Vec3>& start_positions, std::uint64_t step,
                                 std::uint64_t epoch, const std::vector<Vec3>* material_positions) {
   step_ = step;
-  use_tangents(probe);
+  keep_parametric_data(probe);
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
   std::size_t reused = 0;
@@ -221,7 +224,7 @@ ErrorPredictor::Coefficients ErrorPredictor::coefficients(const Mesh48& mesh,
 void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
                             const SampleStore& samples, const SplitTest& would_split,
                             std::vector<Face>& measure) {
-  use_tangents(probe);
+  keep_parametric_data(probe);
   grow(mesh);
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
   flags_.resize(static_cast<std::size_t>(n));  // every slot written below (dead ones 0)
@@ -296,17 +299,16 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
           // change()'s to the bit: the norm of (x, 0, 0) is sqrt(x * x), which is
           // |x| exactly (x, a difference of two floats, neither underflows nor overflows when
           // squared in double).
-          const Coefficients& then = reference_[k];
+          const ScalarCoefficients& then = reference_[k];
           double x[3];
           float length[3];
           cubic = Change{};
           for (int e = 0; e < 3; ++e) {
             const double start = edge[e].dot(frame_[v[(e + 1) % 3].idx].normal);
             const double end = edge[e].dot(frame_[v[(e + 2) % 3].idx].normal);
-            x[e] =
-                static_cast<double>(static_cast<float>(quadratic_part(start, end))) - then.c[e][0];
+            x[e] = static_cast<double>(static_cast<float>(quadratic_part(start, end))) - then.c[e];
             const double d = std::abs(
-                static_cast<double>(static_cast<float>(cubic_part(start, end))) - then.d[e][0]);
+                static_cast<double>(static_cast<float>(cubic_part(start, end))) - then.d[e]);
             cubic.largest = std::max(cubic.largest, d);
             cubic.sum += d;
             length[e] = static_cast<float>(chord[e]);
@@ -315,9 +317,10 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
           stretch = strain(length, then.length);
         } else {
           const Coefficients now = coefficients(mesh, probe, v, edge);
-          quadratic = quadratic_change(now.c, reference_[k].c);
-          cubic = change(now.d, reference_[k].d);
-          stretch = strain(now.length, reference_[k].length);
+          const Coefficients& then = vector_reference_[k];
+          quadratic = quadratic_change(now.c, then.c);
+          cubic = change(now.d, then.d);
+          stretch = strain(now.length, then.length);
         }
         double offset = 0.0;
         for (Vertex x : v) offset = std::max(offset, frame_[x.idx].offset);
@@ -372,6 +375,7 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(slid_, r.vertex, r.n_vertices);
   renumber_elements(evaluated_, r.vertex, r.n_vertices);
   renumber_elements(reference_, r.face, r.n_faces);
+  if (parametric_) renumber_elements(vector_reference_, r.face, r.n_faces);
   renumber_elements(has_reference_, r.face, r.n_faces);
   renumber_elements(bound_, r.face, r.n_faces);
   renumber_elements(rise_, r.face, r.n_faces);
@@ -381,7 +385,7 @@ void ErrorPredictor::after_renumber(Mesh48&, const Renumbering& r) {
 
 void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,
                             const std::vector<Face>& faces) {
-  use_tangents(probe);
+  keep_parametric_data(probe);
   grow(mesh);
   // Vertices born this step (splits) have no frame yet: listed here (each once: marked as
   // listed), their frames computed in parallel below.
@@ -405,7 +409,17 @@ void ErrorPredictor::record(const Mesh48& mesh, const SurfaceProbe& probe,
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f = faces[static_cast<std::size_t>(i)];
     if (!mesh.is_alive(f)) continue;
-    reference_[f.idx] = coefficients(mesh, probe, f);
+    const Coefficients now = coefficients(mesh, probe, f);
+    if (parametric_) {
+      vector_reference_[f.idx] = now;
+    } else {
+      ScalarCoefficients& scalar = reference_[f.idx];
+      for (int e = 0; e < 3; ++e) {
+        scalar.c[e] = now.c[e][0];
+        scalar.d[e] = now.d[e][0];
+        scalar.length[e] = now.length[e];
+      }
+    }
     has_reference_[f.idx] = 1;
     bound_[f.idx] = 0.0;
     rise_[f.idx] = 0.0;

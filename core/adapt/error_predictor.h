@@ -220,11 +220,16 @@ class ErrorPredictor final : public MeshListener {
     float d[3][3];
     float length[3];  // the edges' lengths (the face's strain since its reference)
   };
+  // A face's reference on an implicit surface, whose residual is scalar: the coefficients'
+  // first components (36 bytes instead of 84; select() reads every skipped face's each step).
+  struct ScalarCoefficients {
+    float c[3], d[3], length[3];
+  };
 
   void grow(const Mesh48& mesh);
-  // Keeps S_u and S_v per vertex from the first parametric surface on (they are not read on
-  // implicit ones).
-  void use_tangents(const SurfaceProbe& probe);
+  // Keeps S_u and S_v per vertex and the coefficient vectors per face from the first parametric
+  // surface on (implicit ones read neither).
+  void keep_parametric_data(const SurfaceProbe& probe);
   void refresh_vertex(const Mesh48& mesh, const SurfaceProbe& probe, Vertex v,
                       std::uint64_t epoch = 0);
   Coefficients coefficients(const Mesh48& mesh, const SurfaceProbe& probe, Face f) const;
@@ -234,7 +239,7 @@ class ErrorPredictor final : public MeshListener {
 
   std::uint64_t step_ = 0;
   std::vector<VertexFrame> frame_;
-  std::vector<Tangents> tangents_;  // parametric surfaces only (use_tangents)
+  std::vector<Tangents> tangents_;  // parametric surfaces only (keep_parametric_data)
   bool parametric_ = false;
   std::vector<std::uint64_t> frame_step_;   // step each frame was computed at (+1; 0 = never)
   std::vector<Vertex> unframed_;            // record()'s scratch: vertices without a frame
@@ -242,7 +247,8 @@ class ErrorPredictor final : public MeshListener {
   std::vector<float> slid_;                 // and its slide over the surface (begin_step)
   std::vector<PointEvaluation> evaluated_;  // note()
   std::size_t reused_evaluations_ = 0;
-  std::vector<Coefficients> reference_;
+  std::vector<ScalarCoefficients> reference_;   // implicit surfaces
+  std::vector<Coefficients> vector_reference_;  // parametric surfaces (keep_parametric_data)
   std::vector<std::uint8_t> has_reference_;
   std::vector<double> bound_;
   std::vector<double> rise_;  // bound_ before SampleStore::reading_gain (reading_range)
