@@ -583,8 +583,8 @@ void Adapter::tangential_correction() {
 void Adapter::sampling() {
   samples_.set_pattern_epoch(surface_epoch_);
   samples_.set_step(step_);  // whose turn it is: both modes measure those faces (select too)
-  samples_.refresh_patterns(mesh_);
   if (options_.sampling == Sampling::kFull) {
+    samples_.refresh_patterns(mesh_);
     measure(mesh_.live_faces());
     stats_.faces_measured += mesh_.n_faces();
     return;
@@ -597,6 +597,9 @@ void Adapter::sampling() {
                     {split_error_floor(false),
                      [&](Face f, double error) { return split_urgency(f, error, false) > 1.0; }},
                     to_measure_);
+  // select() listed every face whose pattern is outdated; the same patterns as the mesh-wide
+  // refresh_patterns(mesh_) draws, in the same (face) order.
+  samples_.refresh_patterns(mesh_, to_measure_);
   measure(to_measure_);
   stats_.faces_measured += to_measure_.size();
 }

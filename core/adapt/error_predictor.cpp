@@ -282,8 +282,12 @@ void ErrorPredictor::select(const Mesh48& mesh, const SurfaceProbe& probe,
       travel_[k] += moved;  // reset by record()
       const bool slid_far =
           !(slid * slid <= static_cast<float>(kMaxSlideFraction * kMaxSlideFraction) * shortest2);
-      bool needed =
-          !has_reference_[k] || !samples.measured(f) || samples.densified(f) || samples.on_turn(f);
+      // A face whose pattern no longer fits its area (SampleStore::pattern_outdated) gets a new
+      // one before it is measured (Adapter::sampling); (p1 - p0) x (p2 - p0) as the samples
+      // compute it (p2 - p0 is -edge[1] exactly).
+      bool needed = !has_reference_[k] || !samples.measured(f) || samples.densified(f) ||
+                    samples.on_turn(f) ||
+                    samples.pattern_outdated(f, edge[2].cross(-edge[1]).squaredNorm());
       if (!needed && slid_far) {
         flags_[k] = 2;  // measured for its slide alone (guarded())
         continue;

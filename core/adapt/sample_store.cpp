@@ -31,10 +31,15 @@ double uniform01(std::uint64_t& state) {
   return static_cast<double>(state >> 11) * 0x1.0p-53;
 }
 
-double face_area(const Mesh48& mesh, Face f) {
+// |(p1 - p0) x (p2 - p0)|^2: the face's doubled area, squared.
+double doubled_area_squared(const Mesh48& mesh, Face f) {
   const auto v = mesh.vertices(f);
   const Vec3& a = mesh.position(v[0]);
-  return 0.5 * (mesh.position(v[1]) - a).cross(mesh.position(v[2]) - a).norm();
+  return (mesh.position(v[1]) - a).cross(mesh.position(v[2]) - a).squaredNorm();
+}
+
+double face_area(const Mesh48& mesh, Face f) {
+  return 0.5 * std::sqrt(doubled_area_squared(mesh, f));
 }
 
 // One edge's part of SampleStore::edge_peaks, with what sharing it with the face across needs.
@@ -105,6 +110,7 @@ void SampleStore::grow_faces(std::size_t capacity) {
   face_start_.resize(capacity, 0);
   face_count_.resize(capacity, 0);
   face_error_.resize(capacity, 0.0);
+  face_sum_.resize(capacity, 0.0);
   face_dense_.resize(capacity, 0);
   measured_.resize(capacity, 0);
   model_error_.resize(capacity, 0.0);
@@ -159,7 +165,11 @@ void SampleStore::compact() {
 }
 
 std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
-  const double n = std::round(density_ * face_area(mesh, f));
+  return target_count(face_area(mesh, f));
+}
+
+std::uint32_t SampleStore::target_count(double area) const {
+  const double n = std::round(density_ * area);
   return static_cast<std::uint32_t>(std::clamp(n, double{kMinSamplesPerFace}, 1e6));
 }
 
@@ -167,6 +177,7 @@ std::uint32_t SampleStore::target_count(const Mesh48& mesh, Face f) const {
 // k(k-1)/2 inverted), k^2 >= the target, and one uniformly jittered sample is drawn per cell.
 void SampleStore::draw_pattern(const Mesh48& mesh, std::uint32_t f, std::uint32_t min_count) {
   face_error_[f] = 0.0;
+  face_sum_[f] = 0.0;  // every new sample's error is 0
   measured_[f] = 0;
   face_dense_[f] = min_count > 0;
   peak_checked_[f] = 0;
@@ -210,6 +221,7 @@ void SampleStore::reset(const Mesh48& mesh) {
   face_start_.clear();
   face_count_.clear();
   face_error_.clear();
+  face_sum_.clear();
   face_dense_.clear();
   measured_.clear();
   model_error_.clear();
@@ -228,11 +240,13 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
   QuadraticErrorModel model;
   Sample* const first = samples_.data() + face_start_[f.idx];
   Sample* const last = first + face_count_[f.idx];
+  double sum = 0.0;  // face_sum_
   if (probe.parametric()) {
     for (Sample* x = first; x != last; ++x) {
       const Vec3 b = x->barycentric();
       const Vec3 r = probe.residual_at(p, uv, b);
       x->error = static_cast<float>(r.norm());
+      sum += static_cast<double>(x->error);
       model.add(b, r);
     }
   } else {
@@ -243,9 +257,11 @@ bool SampleStore::evaluate_face(const Mesh48& mesh, const SurfaceProbe& probe, F
       const double r =
           probe.signed_distance_in_triangle(p, b[0] * p[0] + b[1] * p[1] + b[2] * p[2]);
       x->error = static_cast<float>(std::abs(r));
+      sum += static_cast<double>(x->error);
       model.add(b, r);
     }
   }
+  face_sum_[f.idx] = sum;
   QuadraticErrorModel::Result r = model.evaluate();
   const bool check = peak_check_due(f, r.error) && r.resolved;
   if (check) peak_checked_[f.idx] = 1;
@@ -464,6 +480,7 @@ void SampleStore::append_sample(std::uint32_t f, const Sample& x) {
   }
   samples_.push_back(x);
   ++face_count_[f];
+  face_sum_[f] += static_cast<double>(x.error);  // the range's last sample
   ++peaks_kept_;
 }
 
@@ -527,9 +544,7 @@ std::size_t SampleStore::refresh_patterns(const Mesh48& mesh) {
   for (std::int64_t i = 0; i < n; ++i) {
     const Face f(static_cast<std::uint32_t>(i));
     if (!mesh.is_alive(f)) continue;
-    const std::uint32_t target = target_count(mesh, f), count = face_count_[f.idx];
-    unresolved_[static_cast<std::size_t>(i)] =
-        count == 0 || 2 * count < target || (count > 2 * target && !face_dense_[f.idx]);
+    unresolved_[static_cast<std::size_t>(i)] = pattern_outdated(f, doubled_area_squared(mesh, f));
   }
   std::size_t redrawn = 0;
   for (std::int64_t i = 0; i < n; ++i) {
@@ -540,12 +555,34 @@ std::size_t SampleStore::refresh_patterns(const Mesh48& mesh) {
   return redrawn;
 }
 
+std::size_t SampleStore::refresh_patterns(const Mesh48& mesh, const std::vector<Face>& faces) {
+  std::size_t redrawn = 0;
+  for (Face f : faces) {
+    if (!mesh.is_alive(f) || !pattern_outdated(f, doubled_area_squared(mesh, f))) continue;
+    draw_pattern(mesh, f.idx);
+    ++redrawn;
+  }
+  return redrawn;
+}
+
+bool SampleStore::pattern_outdated_at_area(Face f, double area) const {
+  const std::uint32_t target = target_count(area), count = face_count_[f.idx];
+  return count == 0 || 2 * count < target || (count > 2 * target && !face_dense_[f.idx]);
+}
+
+double SampleStore::sample_sum(std::uint32_t f) const {
+  double sum = 0.0;
+  for_each_sample(Face(f), [&](const Vec3&, double error) { sum += error; });
+  return sum;
+}
+
 SampleStore::Summary SampleStore::summary(const Mesh48& mesh) const {
   const auto n = static_cast<std::int64_t>(mesh.face_capacity());
-  // The samples' errors are summed in kBlocks fixed ranges of faces, the ranges' sums then in
-  // order: the same additions in the same order whatever the thread count. (A reduction(+)
-  // adds each thread's partial sum: the mean's last bits depended on the thread count, and so
-  // did every frame's stats; issue 13.) The maximum and the count are exact in any order.
+  // The faces' sums of their samples' errors (face_sum_) are added in kBlocks fixed ranges of
+  // faces, the ranges' sums then in order: the same additions in the same order whatever the
+  // thread count. (A reduction(+) adds each thread's partial sum: the mean's last bits depended
+  // on the thread count, and so did every frame's stats; issue 13.) The maximum and the count
+  // are exact in any order.
   constexpr std::int64_t kBlocks = 64;
   const std::int64_t blocks = n > kParallelMin ? kBlocks : 1;
   double max_error = 0.0, partial[kBlocks] = {};
@@ -558,7 +595,7 @@ SampleStore::Summary SampleStore::summary(const Mesh48& mesh) const {
       const Face f(static_cast<std::uint32_t>(i));
       if (!mesh.is_alive(f)) continue;
       max_error = std::max(max_error, face_error_[f.idx]);
-      for_each_sample(f, [&](const Vec3&, double error) { sum += error; });
+      sum += face_sum_[f.idx];
       samples += face_count_[f.idx];
     }
     partial[block] = sum;
@@ -600,6 +637,7 @@ void SampleStore::after_split(Mesh48& mesh, const DiamondChange& change) {
       face_error_[c] = 0.0;
       measured_[c] = 0;
       peak_checked_[c] = 0;
+      face_sum_[c] = sample_sum(c);  // the parent's samples, partitioned
       if (face_count_[c] < kMinSamplesPerFace) draw_pattern(mesh, c);
     }
   }
@@ -639,6 +677,8 @@ void SampleStore::after_weld(Mesh48& mesh, const DiamondChange& change) {
     face_error_[parent] = 0.0;
     measured_[parent] = 0;
     peak_checked_[parent] = 0;
+    face_sum_[c[1]] = 0.0;                   // (an empty range)
+    face_sum_[parent] = sample_sum(parent);  // the children's samples, merged
     if (face_count_[parent] > 2 * target_count(mesh, half.parent)) draw_pattern(mesh, parent);
   }
 }
@@ -648,6 +688,7 @@ void SampleStore::after_renumber(Mesh48&, const Renumbering& r) {
   renumber_elements(face_start_, r.face, r.n_faces);
   renumber_elements(face_count_, r.face, r.n_faces);
   renumber_elements(face_error_, r.face, r.n_faces);
+  renumber_elements(face_sum_, r.face, r.n_faces);
   renumber_elements(face_dense_, r.face, r.n_faces);
   renumber_elements(measured_, r.face, r.n_faces);
   renumber_elements(model_error_, r.face, r.n_faces);

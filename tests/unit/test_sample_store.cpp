@@ -12,6 +12,7 @@
 
 #include "core/adapt/criteria.h"
 #include "core/adapt/sample_store.h"
+#include "core/mesh/spatial_order.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -88,6 +89,90 @@ TEST(SampleStore, SamplesKeepTheirPlaceThroughSplitsWeldsAndCompaction) {
     unmatched += !found;
   }
   EXPECT_EQ(unmatched, 0u);
+}
+
+// The mean sampled error the step reports (summary()) keeps each face's sum of its samples'
+// errors instead of reading every sample: it must still be the mean over the samples, however
+// they were measured (some faces, all, again after densifying), split, welded, redrawn,
+// compacted and renumbered. Counted here afresh from the samples themselves.
+TEST(SampleStore, SummaryIsTheMeanOverEverySample) {
+  const std::unique_ptr<Surface> surface = make_scene("sinc");
+  surface->set_time(0.37);  // rippled: the samples' errors differ from face to face
+  const SurfaceProbe probe(*surface);
+  Mesh48 mesh = surface->base_mesh();
+  SampleStore store(20000.0, 11);
+  mesh.add_listener(&store);
+  store.reset(mesh);
+  // The interior peak search on, as the adapter sets it, with T + eps the median face's
+  // reading: measuring then keeps samples at faces' interior peaks (append_sample).
+  for (int level = 0; level < 3; ++level)
+    for (Face f : mesh.live_faces())
+      if (mesh.is_alive(f)) mesh.split(f);
+  store.evaluate_all(mesh, probe);
+  std::vector<double> readings;
+  for (Face f : mesh.live_faces()) readings.push_back(store.face_error(f));
+  std::nth_element(readings.begin(), readings.begin() + readings.size() / 2, readings.end());
+  const double limit = readings[readings.size() / 2];
+  ASSERT_GT(limit, 0.0);
+  store.set_peak_search(0.7 * limit, 1.0 / 0.7 - 1.0, limit);
+  auto check = [&](int op) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (Face f : mesh.live_faces())
+      store.for_each_sample(f, [&](const Vec3&, double error) {
+        sum += error;
+        ++count;
+      });
+    const SampleStore::Summary s = store.summary(mesh);
+    ASSERT_EQ(s.samples, count) << "after operation " << op;
+    const double mean = count ? sum / static_cast<double>(count) : 0.0;
+    // The same positive terms added in another order: within a few ulps per term.
+    ASSERT_NEAR(s.mean_error, mean, 1e-12 * mean + 1e-300) << "after operation " << op;
+  };
+  std::mt19937 rng(5);
+  std::size_t checked_nonzero = 0;
+  for (int op = 0; op < 1500; ++op) {
+    const std::vector<Face> faces = mesh.live_faces();
+    switch (rng() % 8) {
+      case 0:
+      case 1:
+      case 2: {
+        const Face f = faces[rng() % faces.size()];
+        if (mesh.depth(f) < 14) mesh.split(f);
+        break;
+      }
+      case 3:
+      case 4: {
+        const std::vector<Vertex> vertices = mesh.live_vertices();
+        const Vertex v = vertices[rng() % vertices.size()];
+        if (mesh.can_weld(v)) mesh.weld(v);
+        break;
+      }
+      case 5: {  // some faces measured (densifying where unresolved, keeping interior peaks)
+        std::vector<Face> some;
+        for (Face f : faces)
+          if (rng() % 3 == 0) some.push_back(f);
+        store.evaluate_faces(mesh, probe, some);
+        break;
+      }
+      case 6:
+        if (rng() % 4 == 0)
+          store.evaluate_all(mesh, probe);
+        else
+          store.compact();
+        break;
+      default:
+        if (rng() % 2) {
+          mesh.renumber(spatial_renumbering(mesh));
+        } else {  // patterns redrawn for another density
+          store.set_density(rng() % 2 ? 5000.0 : 40000.0);
+          store.refresh_patterns(mesh);
+        }
+    }
+    check(op);
+    checked_nonzero += store.summary(mesh).mean_error > 0.0;
+  }
+  EXPECT_GT(checked_nonzero, 1000u);  // the check compared real errors, not zeros
 }
 
 // A mesh that needed many samples and then few (the sphere growing to R = 9 and back) does
