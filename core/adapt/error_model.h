@@ -91,7 +91,23 @@ struct EdgePeak {
 EdgePeak edge_peak(const Vec3& quarter, const Vec3& half, const Vec3& three_quarters);
 
 // Largest |a b1 b2 + b b2 b0 + c b0 b1| over the triangle b >= 0, b0 + b1 + b2 = 1 (exact): the
-// scalar model's maximum, and the predictor's bound on a scalar residual's quadratic change.
-double scalar_maximum(double a, double b, double c);
+// scalar model's maximum, and the predictor's bound on a scalar residual's quadratic change
+// (inline: ErrorPredictor::select calls it for every skipped face). On an edge only one term
+// survives, largest at the midpoint (a / 4, ...); inside, r is a quadratic in (x, y) = (b1, b2)
+// whose stationary point solves
+//   [-2c, d; d, -2b] (x, y) = (-c, -b),  d = a - b - c.
+inline double scalar_maximum(double a, double b, double c) {
+  double best = 0.25 * std::max({std::abs(a), std::abs(b), std::abs(c)});
+  const double d = a - b - c;
+  const double det = 4.0 * b * c - d * d;
+  if (det != 0.0) {
+    const double x = (2.0 * b * c + b * d) / det, y = (2.0 * b * c + c * d) / det;
+    if (x > 0.0 && y > 0.0 && x + y < 1.0) {
+      const double z = 1.0 - x - y;
+      best = std::max(best, std::abs(a * x * y + b * y * z + c * z * x));
+    }
+  }
+  return best;
+}
 
 }  // namespace dynamesh

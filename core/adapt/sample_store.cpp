@@ -13,11 +13,6 @@
 namespace dynamesh {
 namespace {
 
-// Below the peak search floor, the edge peaks count less by this much per unit of the model
-// reading's distance to the floor (set_peak_search). Steeper, fewer faces are searched;
-// gentler, the reading moves less with the model (reading_gain).
-constexpr double kPeakRamp = 1.0;
-
 // SplitMix64: a counter-based generator, so a pattern depends only on its key (draw_pattern).
 std::uint64_t mix(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ull;
@@ -310,20 +305,6 @@ void SampleStore::set_peak_search(double floor, double largest_under_reading,
 
 double SampleStore::peak_reading(double model, double peaks) const {
   return std::max(model, peaks - kPeakRamp * std::max(0.0, peak_floor_ - model));
-}
-
-double SampleStore::reading_gain(Face f, double bound) const {
-  const double model = model_error_[f.idx], peaks = peak_error_[f.idx];
-  if (peak_floor_ <= 0.0 || model - bound >= peak_floor_) return 1.0;
-  // Below the floor the reading follows the model with slope kPeakRamp where the ramped peaks
-  // read above it. Whether they could, for a model reading within the bound, is linear in it:
-  // the range's ends decide. An unsearched face's peaks are taken as under-read by the most
-  // assumed (they then read above the model exactly from search_start_ on).
-  for (double m : {std::max(0.0, model - bound), std::min(model + bound, peak_floor_)}) {
-    const double p = peaks >= 0.0 ? peaks + bound : (1.0 + largest_under_reading_) * m;
-    if (p - kPeakRamp * (peak_floor_ - m) >= m) return 1.0 + kPeakRamp;
-  }
-  return 1.0;
 }
 
 double SampleStore::reading_upper(Face f, double rise) const {

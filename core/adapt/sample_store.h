@@ -17,6 +17,7 @@
 // pool is compacted in face order. No allocation per operation once the pool has grown.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -47,7 +48,7 @@ class SampleStore final : public MeshListener {
   // the interpolant's peak, a dozen per face). Only faces near the split bound need it: the
   // adapter sets the floor below T + eps by more than the quadratic model under-reads a peak
   // (adapter.cpp, kPeakSearchBand), by at most `largest_under_reading` (relative). Below the
-  // floor the peaks count less, by kPeakRamp (sample_store.cpp) times the model's distance to
+  // floor the peaks count less, by kPeakRamp times the model's distance to
   // it, down to where a peak under-read by that much no longer counts: faces read below that
   // are not searched. So the reading has no jump: it moves by at most reading_gain() times what
   // the model's reading or the peaks move (ErrorPredictor's bound). floor 0 (the default): no
@@ -56,10 +57,27 @@ class SampleStore final : public MeshListener {
   // split bound, T + eps); its interior peak is looked for only below it (evaluate_faces).
   void set_peak_search(double floor, double largest_under_reading,
                        double interior_ceiling = std::numeric_limits<double>::infinity());
+  // Below the peak search floor, the edge peaks count less by this much per unit of the model
+  // reading's distance to the floor (set_peak_search). Steeper, fewer faces are searched;
+  // gentler, the reading moves less with the model (reading_gain).
+  static constexpr double kPeakRamp = 1.0;
   // The most the face's reading can move, per unit of movement of its model reading and its
   // edge peaks, while both stay within `bound` of their last values: 1 + kPeakRamp where the
-  // ramped peaks could then be the reading below the floor, 1 elsewhere.
-  double reading_gain(Face f, double bound) const;
+  // ramped peaks could then be the reading below the floor, 1 elsewhere. (Inline:
+  // ErrorPredictor::select asks it for every skipped face.)
+  double reading_gain(Face f, double bound) const {
+    const double model = model_error_[f.idx], peaks = peak_error_[f.idx];
+    if (peak_floor_ <= 0.0 || model - bound >= peak_floor_) return 1.0;
+    // Below the floor the reading follows the model with slope kPeakRamp where the ramped peaks
+    // read above it. Whether they could, for a model reading within the bound, is linear in it:
+    // the range's ends decide. An unsearched face's peaks are taken as under-read by the most
+    // assumed (they then read above the model exactly from search_start_ on).
+    for (double m : {std::max(0.0, model - bound), std::min(model + bound, peak_floor_)}) {
+      const double p = peaks >= 0.0 ? peaks + bound : (1.0 + largest_under_reading_) * m;
+      if (p - kPeakRamp * (peak_floor_ - m) >= m) return 1.0 + kPeakRamp;
+    }
+    return 1.0;
+  }
   // The largest reading the face can have once its model reading and its edge peaks each rose
   // by at most `rise` from their last values (reading_gain's assumption; an unsearched face's
   // peaks under-read by the most assumed): the reading itself at those raised values, since it
