@@ -134,23 +134,4 @@ MeshQuality measure_quality(const Mesh48& mesh) {
   return q;
 }
 
-// Cosine of the triangle's smallest angle, the one opposite its shortest edge (1 for a
-// degenerate triangle). Comparing cosines avoids three atan2 per face: the angle is
-// decreasing in its cosine on [0, pi].
-double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  // The angle opposite the shortest edge lies between the two other edges.
-  Vec3 u, v;
-  if (lab <= lbc && lab <= lca) {
-    u = a - c, v = b - c;
-  } else if (lbc <= lca) {
-    u = b - a, v = c - a;
-  } else {
-    u = a - b, v = c - b;
-  }
-  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
-  return norms > 0 ? u.dot(v) / norms : 1.0;
-}
-
 }  // namespace dynamesh

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 
@@ -28,8 +29,23 @@ double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Cosine of one triangle's smallest angle (the one opposite its shortest edge), 1 when
 // degenerate. Hot loops compare cosines instead of taking three atan2 per face: the angle is
-// decreasing in its cosine on [0, pi].
-double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c);
+// decreasing in its cosine on [0, pi]. (Inline: the smoothing's guard asks it twice for every
+// face with a moved corner.)
+inline double smallest_angle_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  // The angle opposite the shortest edge lies between the two other edges.
+  Vec3 u, v;
+  if (lab <= lbc && lab <= lca) {
+    u = a - c, v = b - c;
+  } else if (lbc <= lca) {
+    u = b - a, v = c - a;
+  } else {
+    u = a - b, v = c - b;
+  }
+  const double norms = std::sqrt(u.squaredNorm() * v.squaredNorm());
+  return norms > 0 ? u.dot(v) / norms : 1.0;
+}
 
 // Smallest and largest interior angle of one triangle, in degrees.
 std::array<double, 2> angle_range_deg(const Vec3& a, const Vec3& b, const Vec3& c);
