@@ -181,7 +181,7 @@ class SampleStore final : public MeshListener {
   bool pattern_outdated(Face f, double q) const {
     const double count = face_count_[f.idx];
     const double scaled = 0.25 * density_ * density_ * q;  // (D * area)^2
-    // Within limits for sure: the target (at least kMinSamplesPerFace) is below 2 * count,
+    // Within limits for sure: the target (at least kMinSamplesPerFace) is at most 2 * count,
     // and either the pattern was densified, or count <= 2 * kMinSamplesPerFace, or the target
     // is above count / 2.
     constexpr double kMargin = 1e-12;
