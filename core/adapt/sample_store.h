@@ -48,11 +48,10 @@ class SampleStore final : public MeshListener {
   // the interpolant's peak, a dozen per face). Only faces near the split bound need it: the
   // adapter sets the floor below T + eps by more than the quadratic model under-reads a peak
   // (adapter.cpp, kPeakSearchBand), by at most `largest_under_reading` (relative). Below the
-  // floor the peaks count less, by kPeakRamp times the model's distance to
-  // it, down to where a peak under-read by that much no longer counts: faces read below that
-  // are not searched. So the reading has no jump: it moves by at most reading_gain() times what
-  // the model's reading or the peaks move (ErrorPredictor's bound). floor 0 (the default): no
-  // search.
+  // floor the peaks count less, by kPeakRamp times the model's distance to it, down to where a
+  // peak under-read by that much no longer counts: faces read below that are not searched. So
+  // the reading has no jump: it moves by at most reading_gain() times what the model's reading
+  // or the peaks move (ErrorPredictor's bound). floor 0 (the default): no search.
   // `interior_ceiling`: the reading from which a face is split whatever it holds inside (the
   // split bound, T + eps); its interior peak is looked for only below it (evaluate_faces).
   void set_peak_search(double floor, double largest_under_reading,
