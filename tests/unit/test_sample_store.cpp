@@ -175,6 +175,78 @@ TEST(SampleStore, SummaryIsTheMeanOverEverySample) {
   EXPECT_GT(checked_nonzero, 1000u);  // the check compared real errors, not zeros
 }
 
+// refresh_patterns decides most faces on their squared area against the count's limits
+// squared (SampleStore::pattern_outdated, a 1e-12 margin) and only the rest on the rounded
+// area: its verdicts must be the rule's, count == 0 or 2 count < target or (count > 2 target
+// and not densified), target = clamp(round(D * area), 9, 1e6), also for densities that put a
+// face's D * area right at a limit (on either side of the rounding's half). A redrawn face
+// reads unmeasured, the others keep their measurement.
+TEST(SampleStore, PatternRefreshFollowsTheTargetRule) {
+  const std::unique_ptr<Surface> surface = make_scene("sinc");
+  surface->set_time(0.37);
+  const SurfaceProbe probe(*surface);
+  Mesh48 mesh = surface->base_mesh();
+  std::mt19937 rng(9);
+  for (int op = 0; op < 400; ++op) {  // faces of many sizes and shapes
+    const std::vector<Face> faces = mesh.live_faces();
+    const Face f = faces[rng() % faces.size()];
+    if (mesh.depth(f) < 12) mesh.split(f);
+  }
+  SampleStore store(3000.0, 13);
+  mesh.add_listener(&store);
+  store.reset(mesh);
+  auto area = [&](Face f) {
+    const auto v = mesh.vertices(f);
+    const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+    return 0.5 * (b - a).cross(c - a).norm();
+  };
+  std::size_t redrawn = 0, kept = 0, at_limit = 0;
+  store.evaluate_all(mesh, probe);  // every face measured (some densified)
+  for (int trial = 0; trial < 60; ++trial) {
+    const std::vector<Face> faces = mesh.live_faces();
+    // A density that puts one face's D * area at a limit of its count: 2 count + 0.5 (the
+    // target rounds to 2 count + 1, or stays at 2 count just below), or count / 2 - 0.5.
+    // Not a density that would draw millions of samples.
+    Face pick;
+    double limit = 0.0;
+    do {
+      pick = faces[rng() % faces.size()];
+      const double n = store.count(pick);
+      limit = trial % 2 ? 2.0 * n + 0.5 : std::max(n / 2.0 - 0.5, 1.0);
+    } while (limit / area(pick) > 10000.0 || limit / area(pick) < 250.0);
+    const double nudge = std::ldexp(1.0, -50) * static_cast<double>(int(rng() % 5) - 2);
+    store.set_density(limit / area(pick) * (1.0 + nudge));
+    std::vector<std::uint8_t> expected;
+    std::vector<std::uint32_t> count_before;
+    for (Face f : faces) {
+      count_before.push_back(store.count(f));
+      const double target = std::clamp(std::round(store.density() * area(f)),
+                                       double{SampleStore::kMinSamplesPerFace}, 1e6);
+      const double count = store.count(f);
+      expected.push_back(count == 0 || 2 * count < target ||
+                         (count > 2 * target && !store.densified(f)));
+      const double x = store.density() * area(f);
+      at_limit +=
+          std::abs(x - (2 * count + 0.5)) < 1e-9 * x || std::abs(2 * x + 1 - count) < 1e-9 * x;
+    }
+    store.refresh_patterns(mesh);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      ASSERT_EQ(!store.measured(faces[i]), expected[i] != 0)
+          << "trial " << trial << ", face " << faces[i].idx << ": " << count_before[i]
+          << " samples, D * area " << store.density() * area(faces[i]);
+      redrawn += expected[i];
+      kept += !expected[i];
+    }
+    std::vector<Face> unmeasured;  // measured again, so that every face starts measured
+    for (Face f : faces)
+      if (!store.measured(f)) unmeasured.push_back(f);
+    store.evaluate_faces(mesh, probe, unmeasured);
+  }
+  EXPECT_GT(redrawn, 100u);
+  EXPECT_GT(kept, 1000u);
+  EXPECT_GE(at_limit, 30u);  // the densities did put faces at the limits
+}
+
 // A mesh that needed many samples and then few (the sphere growing to R = 9 and back) does
 // not keep the peak's buffers: after compaction each holds at most kReleaseFactor times the
 // live samples (the default sphere kept 115 MB of them at R = 0.6, where it needs 0.2 MB).
