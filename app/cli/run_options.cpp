@@ -141,6 +141,10 @@ const std::map<std::string, Setter>& valued_options() {
        [](RunOptions& o, auto& k, auto& v) {
          o.adapt.smoothing.iterations = parse_int(k, v, 0, kMaxSmoothIterations);
        }},
+      {"--smooth-settled",
+       [](RunOptions& o, auto& k, auto& v) {
+         o.adapt.smoothing.settled_offset = parse_number(k, v);
+       }},
       {"--edge-length",
        [](RunOptions& o, auto& k, auto& v) { o.edge_length = parse_number(k, v); }},
       {"--max-triangles",
@@ -253,6 +257,8 @@ void validate(RunOptions& o) {
   if (o.steps < 0) throw UsageError("--steps must not be negative (0 adapts once at --t0)");
   if (a.smoothing.iterations < 0) throw UsageError("--smooth-iters must not be negative");
   if (a.smoothing.k < 0) throw UsageError("--k must not be negative");
+  if (!(a.smoothing.settled_offset >= 0 && a.smoothing.settled_offset < 1))
+    throw UsageError("--smooth-settled must be at least 0 and below 1 (a fraction of an edge)");
   if (o.edge_length < 0) throw UsageError("--edge-length must be positive");
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw UsageError("--width and --height must be between 16 and 16384 pixels");
@@ -369,6 +375,10 @@ Adaptation:
                          its splits are held once the error stops falling  [on]
   --k K                  curvature sensitivity of the tangential smoothing  [2]
   --smooth-iters I       smoothing iterations per step  [1]
+  --smooth-settled F     leave a vertex in place while it is within F of its ring's mean
+                         edge from the ring's centroid (tangentially): it has settled, and
+                         moving it would only chase Equation 1's fixed point by tiny moves;
+                         0 moves every vertex every step, as the paper does  [0]
   --smooth-weights W     the one-ring centroid of Equation 1: uniform (the paper's) or
                          inverse-length (scale-invariant: keeps the 4-8 grading)  [uniform]
   --smooth-raw-curvature use raw curvature in Equation 1 (default: normalised to [0, 1])

@@ -324,12 +324,15 @@ Weights compute_rings_and_frames(const Mesh48& mesh, const Surface& surface,
   return Weights{o.raw_curvature, lo, hi - lo};
 }
 
-// Equation 1's tangential move of one vertex (towards its ring centroid).
-Vec3 equation1_move(const Mesh48& mesh, Vertex v, const Frame& f, const Vec3& centroid,
-                    const SmoothingOptions& o, const Weights& l) {
+// Equation 1's d: the part of p - c on the tangent plane of normal n.
+inline Vec3 tangential_offset(const Vec3& p, const Vec3& centroid, const Vec3& normal) {
+  const Vec3 vec = p - centroid;
+  return vec - vec.dot(normal) * normal;
+}
+
+// Equation 1's tangential move of a vertex whose tangential offset from its ring centroid is d.
+Vec3 equation1_move(const Frame& f, const Vec3& d, const SmoothingOptions& o, const Weights& l) {
   const double k = o.k;
-  const Vec3 vec = mesh.position(v) - centroid;
-  const Vec3 d = vec - vec.dot(f.k.normal) * f.k.normal;
   return -(f.k.dir1.dot(d) * std::exp(-k * l(f.l1)) * f.k.dir1 +
            f.k.dir2.dot(d) * std::exp(-k * l(f.l2)) * f.k.dir2);
 }
@@ -398,6 +401,7 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   // A family that moves its points only normal to an axis: the move keeps the coordinate along
   // it (Surface::invariant_axis).
   const Vec3 axis = imp ? imp->invariant_axis() : Vec3::Zero();
+  const double settled2 = o.settled_offset * o.settled_offset;
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -405,10 +409,12 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
     const auto k = static_cast<std::size_t>(i);
     w.moved[k] = 0;
     if (!mesh.is_alive(v)) continue;
-    // Unmoved (failed, or a guard undoes it), the vertex stays where it is.
+    // Unmoved (settled, failed, or a guard undoes it), the vertex stays where it is.
     w.position[k] = mesh.position(v);
     w.uv[k] = mesh.uv(v);
-    Vec3 move = equation1_move(mesh, v, w.frame[k], w.centroid[k], o, weights);
+    const Vec3 d = tangential_offset(mesh.position(v), w.centroid[k], w.frame[k].k.normal);
+    if (d.squaredNorm() < settled2 * (w.mean_edge[k] * w.mean_edge[k])) continue;
+    Vec3 move = equation1_move(w.frame[k], d, o, weights);
     move -= move.dot(axis) * axis;
     const bool ok = par ? parametric_move(*par, mesh, v, move, w.uv[k], w.position[k])
                         : !w.boundary[k] && implicit_move(*imp, mesh, v, move, w.position[k],
