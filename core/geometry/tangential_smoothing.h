@@ -48,7 +48,7 @@ struct SmoothingOptions {
   // fixed point instead of chasing it by ever smaller moves (each still a projection onto S),
   // and follows it as soon as the offset grows past it; the offset, not the move, is what
   // counts, so a vertex held on a ridge by a large k still creeps as the paper's does.
-  // 0 (the default): every vertex moves every iteration, as in the paper. 0.01 takes 13-16% off
+  // 0 (the default): every vertex moves every iteration, as in the paper. 0.01 takes 11-16% off
   // a capsule-bend step at 10^6 triangles (86% of the vertices settled), but is not the default
   // yet: four tests of the paper's smoothing fail with it (README, "Settled vertices").
   double settled_offset = 0.0;
