@@ -159,18 +159,18 @@ TEST(CliOptions, SettledVerticesAreLeftInPlace) {
   // are left where they are by --smooth-settled 0.01, and more by 0.1; 0 (the default) moves
   // every vertex every step, as the paper does.
   const fs::path dir = test::cli_scratch("settled");
-  auto moves = [&](const std::string& settled) {
-    const fs::path csv = dir / ("s" + settled + ".csv");
-    ok({"--scene", "capsule-bend", "--threshold", "0.002", "--epsilon", "0.0005", "--t0", "0.5",
-        "--t1", "0.51", "--steps", "10", "--smooth-settled", settled, "--stats", csv.string()});
+  // `name` names the stats file; `option` is added to the run (empty: the default).
+  auto moves = [&](const std::string& name, const Args& option) {
+    const fs::path csv = dir / (name + ".csv");
+    ok(Args{"--scene", "capsule-bend", "--threshold", "0.002", "--epsilon", "0.0005", "--t0", "0.5",
+            "--t1", "0.51", "--steps", "10", "--stats", csv.string()} +
+       option);
     return moves_after_start(csv);
   };
-  const double paper = moves("0"), settled = moves("0.01"), coarse = moves("0.1");
-  // Without the option: the paper's.
-  const fs::path bare = dir / "bare.csv";
-  ok({"--scene", "capsule-bend", "--threshold", "0.002", "--epsilon", "0.0005", "--t0", "0.5",
-      "--t1", "0.51", "--steps", "10", "--stats", bare.string()});
-  EXPECT_EQ(moves_after_start(bare), paper);
+  const double paper = moves("s0", {"--smooth-settled", "0"}),
+               settled = moves("s0.01", {"--smooth-settled", "0.01"}),
+               coarse = moves("s0.1", {"--smooth-settled", "0.1"});
+  EXPECT_EQ(moves("bare", {}), paper);  // without the option: the paper's
   std::printf("smoothing moves over 10 steps: %.0f (0), %.0f (0.01), %.0f (0.1)\n", paper, settled,
               coarse);
   EXPECT_LT(settled, 0.95 * paper);  // measured 0.86: a coarse mesh, many level transitions

@@ -121,13 +121,13 @@ TEST(SettledSmoothing, LeavesSettledVerticesAndMovesTheRest) {
 // surface a good part of an edge, so 1e-2 of an edge skips only 5-30% of the moves (86% at 10^6
 // triangles, where the speed matters): 5e-2 is run too, skipping far more.
 TEST(SettledSmoothing, KeepsThePapersQualityOverAnimations) {
+  EXPECT_EQ(AdaptOptions().smoothing.settled_offset, 0.0);  // the paper's, by default
   for (const char* scene : {"capsule-bend", "twist", "sinc"}) {
     AdaptOptions o;
     o.threshold = 2e-3;
     o.epsilon = 5e-4;
     o.smoothing.settled_offset = 0.0;
     const test::AnimationFigures paper = test::animate(scene, o, 100, 0, 0.0);
-    EXPECT_EQ(AdaptOptions().smoothing.settled_offset, 0.0);  // the paper's, by default
     for (const double settled_offset : {0.01, 0.05}) {
       o.smoothing.settled_offset = settled_offset;
       const test::AnimationFigures settled = test::animate(scene, o, 100, 20, 4 * o.density);
