@@ -186,6 +186,26 @@ TEST(MotionFrames, SincAmplitude09InEightSteps) {
   run_frames(run, {0.0, 1.0}, 8, bounds, "sinc");
 }
 
+// The same three strong motions with settled vertices left in place (SmoothingOptions::
+// settled_offset, an option): every frame still an embedded manifold (CGAL), no angle below the
+// floor, the dense error within its bound. The frames are judged, not only the last.
+TEST(MotionFrames, SettledVerticesKeepEveryFrameEmbedded) {
+  AdaptOptions base;
+  base.smoothing.settled_offset = 0.01;
+  {
+    MotionRun run = start("twist", {{"turns", 3.0}}, 0.004, base);
+    run_frames(run, {0.0, 1.0}, 10, {10.0, true, 4.0 * run.options.density}, "settled twist");
+  }
+  {
+    MotionRun run = start("capsule-bend", {{"bend", 1.5 * std::numbers::pi}}, 0.0, base);
+    run_frames(run, {0.0, 1.0}, 8, {10.0, true, 4.0 * run.options.density}, "settled capsule");
+  }
+  {
+    MotionRun run = start("sinc", {{"alpha", 0.9}}, 0.0, base);
+    run_frames(run, {0.0, 1.0}, 8, {10.0, false, 4.0 * run.options.density}, "settled sinc");
+  }
+}
+
 // Colin27, T = 0.5 mm (the scene's default), through the real binary. The sweep is
 // 0 -> 20 -> 0 mm in 20 + 20 steps; without sub-steps and repair 0 -> 9 mm in 12 steps already
 // self-intersects (5 pairs), so this test runs 0 -> 10 -> 0 mm in 10 + 10 steps, the same
