@@ -900,13 +900,17 @@ void Adapter::split_pass(bool initial) {
   // kStallLevels bisections below it whose error has not fallen by half (a smooth surface's has
   // fallen to 1/16) is held, and not split again while it lives, and from then on no face
   // deeper than 4 bisections below the deepest now (hold_splits); the error stays above T and
-  // is reported (splits_held, held_depth). A larger error found on the way (a feature the coarser
-  // faces' samples missed) restarts the count; an error halved restarts it from there. Only in
-  // steps (an initial mesh or a re-base refines from faces far coarser than the features they span,
-  // whose error stays up until they are finer than the features), and only without a topology
-  // monitor, whose events hold the splits when they cannot be followed: a repair's patch is as
-  // coarse against the new neck, and the diagonal blobs' merge tripped the bound in the step
-  // after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate). And only with the vertex
+  // is reported (splits_held, held_depth). An error at least doubled on the way (a feature the
+  // coarser faces' samples missed) restarts the count; an error halved restarts it from there.
+  // A smaller rise is the stall itself read through other samples: the dumbbell's gap faces read
+  // 2.85-3.70 mm at every depth from 2 to 15, and restarted on every new maximum (200 times in
+  // one pass) the hold engaged anywhere from depth 10 to 17 with the sample seed, and with seed 4
+  // the pass ran into the 5,000-triangle budget (MriEvents.DumbbellUnwatchedHoldsForEverySeed).
+  // Only in steps (an initial mesh or a re-base refines from faces far coarser than the features
+  // they span, whose error stays up until they are finer than the features), and only without a
+  // topology monitor, whose events hold the splits when they cannot be followed: a repair's patch
+  // is as coarse against the new neck, and the diagonal blobs' merge tripped the bound in the
+  // step after it (test TopologyEvents.DiagonalBlobsMergeAndSeparate). And only with the vertex
   // correction: without it (--no-geometric) the old vertices stay off the moving surface, so no
   // split lowers the error, whatever the topology; that run stops on its own at the first step
   // above T + eps (test CliOptions.NoGeometricStopsWhenTheMeshIsLeftBehind).
@@ -969,8 +973,8 @@ void Adapter::split_pass(bool initial) {
       SplitLineage& l = tracker_->lineage[f.idx];
       const double error = samples_.face_error(f);
       const int depth = mesh_.depth(f);
-      if (!l.held && l.pass == pass && error > kStallFall * l.error && error <= l.error &&
-          depth - l.depth >= kStallLevels) {
+      const bool rose = error > l.error / kStallFall, fell = error <= kStallFall * l.error;
+      if (!l.held && l.pass == pass && !rose && !fell && depth - l.depth >= kStallLevels) {
         // The faces beside it span the same gap, and each pass would give them 4 bisections
         // more (the dumbbell unwatched: the 5,000-triangle budget by step 3): from now on, as
         // after an event the mesh could not follow, no face is split far below the deepest.
@@ -983,7 +987,7 @@ void Adapter::split_pass(bool initial) {
         ++stats_.splits_held;
         continue;
       }
-      if (l.pass != pass || error > l.error || error <= kStallFall * l.error)
+      if (l.pass != pass || rose || fell)
         l = {static_cast<float>(error), pass, static_cast<std::int16_t>(depth), 0};
     }
     tracker_->touched.clear();
