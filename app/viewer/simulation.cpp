@@ -33,7 +33,8 @@ bool same_surface(const SimulationControls& a, const SimulationControls& b) {
 bool same_adaptation(const SimulationControls& a, const SimulationControls& b) {
   return a.threshold == b.threshold && a.epsilon == b.epsilon && a.density == b.density &&
          a.k == b.k && a.smooth_iterations == b.smooth_iterations &&
-         a.edge_length == b.edge_length && a.max_triangles == b.max_triangles;
+         a.smooth_settled == b.smooth_settled && a.edge_length == b.edge_length &&
+         a.max_triangles == b.max_triangles;
 }
 
 CriterionList criteria_for(const SimulationControls& c, const Surface& surface) {
@@ -81,6 +82,7 @@ AdaptOptions adapt_options(const SimulationControls& c) {
   o.smoothing.k = c.k;
   o.smoothing.iterations = c.smooth_iterations;
   o.smoothing.enabled = c.smooth_iterations > 0;
+  o.smoothing.settled_offset = c.smooth_settled;
   return o;
 }
 

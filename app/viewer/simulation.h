@@ -43,6 +43,9 @@ struct SimulationControls {
   double density = 2000.0;              // samples per unit area
   double k = 2.0;                       // Equation 1 curvature sensitivity
   int smooth_iterations = 1;
+  // A vertex within this fraction of its ring's mean edge of its ring's centroid is left in
+  // place (SmoothingOptions::settled_offset; 0, the paper's: every vertex moves).
+  double smooth_settled = 0.0;
   double edge_length = 0.0;  // > 0: target edge length (sphere: its right half); 0: scene's L
   int max_triangles = 2'000'000;
   unsigned seed = 1;

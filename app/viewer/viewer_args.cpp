@@ -62,6 +62,9 @@ void validate_state(const ViewerState& s) {
   if (c.smooth_iterations < 0 || c.smooth_iterations > kMaxSmoothIterations)
     throw std::invalid_argument("--smooth-iters must be between 0 and " +
                                 std::to_string(kMaxSmoothIterations));
+  if (!(c.smooth_settled >= 0 && c.smooth_settled < 1))
+    throw std::invalid_argument(
+        "--smooth-settled must be at least 0 and below 1 (a fraction of an edge)");
   if (s.steps < 1 || s.steps > kMaxSteps)
     throw std::invalid_argument("--steps must be between 1 and " + std::to_string(kMaxSteps));
   if (!(std::isfinite(s.t0) && std::isfinite(s.t1) && s.t0 >= 0 && s.t1 <= 1 && s.t0 <= s.t1))
@@ -123,7 +126,8 @@ std::string viewer_usage() {
          "                [--mask FILE] [--atlas FILE] (mri: brain mask, label atlas)\n"
          "                [--keyframes T0,T1,...] (visited in order, --steps steps each)\n"
          "                [--steps N] [--threshold T] [--epsilon E] [--density D] [--k K]\n"
-         "                [--smooth-iters I] [--edge-length L] [--max-triangles M] [--seed S]\n"
+         "                [--smooth-iters I] [--smooth-settled F] [--edge-length L]\n"
+         "                [--max-triangles M] [--seed S]\n"
          "                [--color shaded|error|curvature|valence|level|intensity|region]\n"
          "                [--play]\n"
          "                [--color-range frame|first|run|MIN,MAX] [--no-wireframe]\n"
@@ -241,6 +245,8 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
       s.controls.k = to_number(opt, value());
     } else if (opt == "--smooth-iters") {
       s.controls.smooth_iterations = to_int(opt, value(), 0, kMaxSmoothIterations);
+    } else if (opt == "--smooth-settled") {
+      s.controls.smooth_settled = to_number(opt, value());
     } else if (opt == "--edge-length") {
       s.controls.edge_length = to_number(opt, value());
     } else if (opt == "--max-triangles") {

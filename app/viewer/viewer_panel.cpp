@@ -183,6 +183,14 @@ void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) 
   changed |= ImGui::IsItemDeactivatedAfterEdit();
   note_widget(a, info, "k");
   ImGui::SliderInt("smoothing iters", &c.smooth_iterations, 0, 10);
+  const double settled_lo = 0.0, settled_hi = 0.1;
+  ImGui::SliderScalar("settled below", ImGuiDataType_Double, &c.smooth_settled, &settled_lo,
+                      &settled_hi, "%.3g");
+  changed |= ImGui::IsItemDeactivatedAfterEdit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "leave a vertex in place while its offset from its ring's centroid is below this\n"
+        "fraction of the ring's mean edge (0, the paper's: every vertex moves every step)");
   ImGui::InputDouble("edge length", &c.edge_length, 0.01, 0.1, "%.4g", kOnEnter);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("target edge length (sphere: its right half); 0: the scene's own");
@@ -193,6 +201,7 @@ void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) 
   c.epsilon = std::clamp(c.epsilon, 0.0, 0.99 * c.threshold);
   c.density = std::max(c.density, 1.0);
   c.k = std::max(c.k, 0.0);
+  c.smooth_settled = std::clamp(c.smooth_settled, 0.0, 0.99);
   c.edge_length = std::max(c.edge_length, 0.0);
   c.max_triangles = std::max(c.max_triangles, 8);
   s.style.colors.threshold = c.threshold;

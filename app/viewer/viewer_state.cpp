@@ -138,6 +138,7 @@ void visit_fields(State& s, Visit&& visit) {
   visit("density", s.controls.density);
   visit("k", s.controls.k);
   visit("smooth_iterations", s.controls.smooth_iterations);
+  visit("smooth_settled", s.controls.smooth_settled);
   visit("edge_length", s.controls.edge_length);
   visit("max_triangles", s.controls.max_triangles);
   visit("seed", s.controls.seed);

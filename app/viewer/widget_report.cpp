@@ -30,8 +30,8 @@ std::string widget_report(const std::vector<WidgetRect>& widgets,
     if (w.active) out << "active " << label << '\n';
   }
   out << "threshold " << controls.threshold << "\nepsilon " << controls.epsilon << "\ndensity "
-      << controls.density << "\nk " << controls.k << "\nresults " << shown.results << "\nbusy "
-      << (shown.busy ? 1 : 0) << '\n';
+      << controls.density << "\nk " << controls.k << "\nsmooth_settled " << controls.smooth_settled
+      << "\nresults " << shown.results << "\nbusy " << (shown.busy ? 1 : 0) << '\n';
   out << "frames " << shown.frames << '\n';
   if (!shown.progress.empty()) out << "progress " << shown.progress << '\n';
   if (!shown.scene.empty()) out << "scene " << shown.scene << '\n';

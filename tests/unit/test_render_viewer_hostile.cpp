@@ -76,7 +76,8 @@ TEST(ViewerHostile, SavedValuesAreCheckedLikeCommandLineValues) {
                                                                 {"steps", "0"},
                                                                 {"camera.rotation", "0 0 0 0"},
                                                                 {"record_fps", "0"},
-                                                                {"threshold", "-1"}};
+                                                                {"threshold", "-1"},
+                                                                {"smooth_settled", "-0.1"}};
   for (const auto& [key, value] : bad) {
     const fs::path file = dir / "viewer.conf";
     std::ofstream(file) << "scene = sinc\n" << key << " = " << value << "\n";
