@@ -148,15 +148,24 @@ int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
       return r;
     };
     for (std::int64_t f = begin; f < end; ++f) {
-      if (!mesh.is_alive(Face(static_cast<std::uint32_t>(f)))) continue;
+      const Face face(static_cast<std::uint32_t>(f));
+      if (!mesh.is_alive(face)) continue;
+      // Each corner's sums and position looked up once per face, not once per edge and again
+      // for the normal. Every sum still receives the same additions in the same order (the
+      // face's edges, then its normal); starting a sum a face then adds nothing to (an edge met
+      // from its twin, no frame reuse) leaves zeros, which is what an untouched sum reads as.
+      const auto v = mesh.vertices(face);
+      RingSum* const corner_sums[3] = {&sums(v[0]), &sums(v[1]), &sums(v[2])};
+      const Vec3* const corner[3] = {&mesh.position(v[0]), &mesh.position(v[1]),
+                                     &mesh.position(v[2])};
       for (int e = 0; e < 3; ++e) {
-        const Halfedge h(Face(static_cast<std::uint32_t>(f)), e);
+        const Halfedge h(face, e);
         const Halfedge twin = mesh.twin(h);
         if (twin.is_valid() && twin.idx < h.idx) continue;  // met from the twin
-        const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
-        RingSum &sa = sums(a), &sb = sums(b);
+        // Halfedge e runs from corner e + 1 to corner e + 2 (Mesh48::from_vertex, to_vertex).
+        RingSum &sa = *corner_sums[(e + 1) % 3], &sb = *corner_sums[(e + 2) % 3];
         if (!twin.is_valid()) sa.boundary = sb.boundary = 1;
-        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b);
+        const Vec3 &pa = *corner[(e + 1) % 3], &pb = *corner[(e + 2) % 3];
         const double length = (pa - pb).norm();
         const double weight = scale_invariant ? (length > 0 ? 1.0 / length : 0.0) : 1.0;
         sa.sum += weight * pb;
@@ -169,10 +178,8 @@ int sum_rings(const Mesh48& mesh, bool scale_invariant, Work& w) {
         ++sb.edges;
       }
       if (!w.reuse) continue;
-      const auto v = mesh.vertices(Face(static_cast<std::uint32_t>(f)));
-      const Vec3 &p0 = mesh.position(v[0]), &p1 = mesh.position(v[1]), &p2 = mesh.position(v[2]);
-      const Vec3 area_normal = (p1 - p0).cross(p2 - p0);
-      for (Vertex x : v) sums(x).normal += area_normal;
+      const Vec3 area_normal = (*corner[1] - *corner[0]).cross(*corner[2] - *corner[0]);
+      for (RingSum* r : corner_sums) r->normal += area_normal;
     }
   };
 #pragma omp parallel for schedule(static) if (chunks > 1) \
