@@ -904,7 +904,7 @@ void Adapter::split_pass(bool initial) {
   // coarser faces' samples missed) restarts the count; an error halved restarts it from there.
   // A smaller rise is the stall itself read through other samples: the dumbbell's gap faces read
   // 2.85-3.70 mm at every depth from 2 to 15, and restarted on every new maximum (200 times in
-  // one pass) the hold engaged anywhere from depth 10 to 17 with the sample seed, and with seed 4
+  // one pass) the hold engaged anywhere from depth 10 to 16 with the sample seed, and with seed 4
   // the pass ran into the 5,000-triangle budget (MriEvents.DumbbellUnwatchedHoldsForEverySeed).
   // Only in steps (an initial mesh or a re-base refines from faces far coarser than the features
   // they span, whose error stays up until they are finer than the features), and only without a
