@@ -2,11 +2,13 @@
 
 #include "app/render/color_scale.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <sstream>
 
+#include "core/adapt/adapt_options_check.h"
 #include "core/io/number_text.h"
 
 namespace dynamesh {
@@ -42,7 +44,6 @@ int parse_int(const std::string& option, const std::string& text, long lo, long 
 
 // Large enough for any real use, small enough that nothing wraps or runs for days.
 constexpr long kMaxSteps = 10'000'000;
-constexpr long kMaxSmoothIterations = 1000;
 constexpr long kMaxImageSide = 16384;
 
 using Setter =
@@ -149,9 +150,8 @@ const std::map<std::string, Setter>& valued_options() {
        [](RunOptions& o, auto& k, auto& v) { o.edge_length = parse_number(k, v); }},
       {"--max-triangles",
        [](RunOptions& o, auto& k, auto& v) {
-         const long n = parse_integer(k, v);
-         if (n < 2) throw UsageError("--max-triangles must be at least 2, got " + v);
-         o.adapt.max_triangles = static_cast<std::size_t>(n);
+         const long n = parse_integer(k, v);  // its floor: adapt_option_problem
+         o.adapt.max_triangles = static_cast<std::size_t>(std::max(n, 0L));
        }},
       {"--max-samples",
        [](RunOptions& o, auto& k, auto& v) {
@@ -242,9 +242,10 @@ const std::map<std::string, std::function<void(RunOptions&)>>& flag_options() {
 
 void validate(RunOptions& o) {
   const AdaptOptions& a = o.adapt;
-  if (!(a.threshold > 0)) throw UsageError("--threshold must be positive (try 0.008)");
-  if (o.adapt.epsilon < 0) throw UsageError("--epsilon must not be negative");
-  // Against a given T here; against the scene's T in apply_scene_defaults.
+  // Each adaptation option's own range (shared with the viewer); the epsilon against a given T
+  // here, against the scene's T in apply_scene_defaults.
+  if (const std::string problem = adapt_option_problem(a); !problem.empty())
+    throw UsageError(problem);
   if (o.threshold_given && o.epsilon_given && o.adapt.epsilon >= a.threshold)
     throw UsageError("--epsilon " + format_number(o.adapt.epsilon) + " must be below --threshold " +
                      format_number(a.threshold) + ": the weld bound T - eps must stay positive");
@@ -253,12 +254,7 @@ void validate(RunOptions& o) {
   for (double t : o.keyframes)
     if (t < 0 || t > 1) throw UsageError("--keyframes: every time must lie in [0, 1]");
   if (o.keyframes.empty()) o.keyframes = {o.t0, o.t1};
-  if (!(a.density > 0)) throw UsageError("--density must be positive (samples per unit area)");
   if (o.steps < 0) throw UsageError("--steps must not be negative (0 adapts once at --t0)");
-  if (a.smoothing.iterations < 0) throw UsageError("--smooth-iters must not be negative");
-  if (a.smoothing.k < 0) throw UsageError("--k must not be negative");
-  if (!(a.smoothing.settled_offset >= 0 && a.smoothing.settled_offset < 1))
-    throw UsageError("--smooth-settled must be at least 0 and below 1 (a fraction of an edge)");
   if (o.edge_length < 0) throw UsageError("--edge-length must be positive");
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw UsageError("--width and --height must be between 16 and 16384 pixels");

@@ -8,15 +8,16 @@
 #include <utility>
 
 #include "app/render/color_scale.h"
+#include "app/viewer/simulation.h"
+#include "core/adapt/adapt_options_check.h"
 #include "core/io/number_text.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
 namespace {
 
-// As dynamesh-cli run's limits (run_options.cpp).
+// As dynamesh-cli run's limit (run_options.cpp).
 constexpr int kMaxSteps = 10'000'000;
-constexpr int kMaxSmoothIterations = 1000;
 
 // The same strict reading as dynamesh-cli run's (core/io/number_text.h).
 double to_number(const std::string& option, const std::string& text) {
@@ -49,22 +50,14 @@ void validate_state(const ViewerState& s) {
     throw std::invalid_argument("unknown scene '" + shown + "' (" + std::to_string(c.scene.size()) +
                                 " characters; dynamesh-cli scenes lists them)");
   }
-  if (!(std::isfinite(c.threshold) && c.threshold > 0))
-    throw std::invalid_argument("--threshold must be positive");
-  if (!(c.epsilon >= 0 && c.epsilon < c.threshold))
+  // The adaptation's options as the simulation will use them, with the CLI's rules.
+  const AdaptOptions adapt = adapt_options(c);
+  if (const std::string problem = adapt_option_problem(adapt); !problem.empty())
+    throw std::invalid_argument(problem);
+  if (!(adapt.epsilon < adapt.threshold))
     throw std::invalid_argument("--epsilon must be in [0, threshold)");
-  if (!(std::isfinite(c.density) && c.density > 0))
-    throw std::invalid_argument("--density must be positive (samples per unit area)");
-  if (!(std::isfinite(c.k) && c.k >= 0)) throw std::invalid_argument("--k must not be negative");
   if (!(std::isfinite(c.edge_length) && c.edge_length >= 0))
     throw std::invalid_argument("--edge-length must be positive");
-  if (c.max_triangles < 8) throw std::invalid_argument("--max-triangles must be at least 8");
-  if (c.smooth_iterations < 0 || c.smooth_iterations > kMaxSmoothIterations)
-    throw std::invalid_argument("--smooth-iters must be between 0 and " +
-                                std::to_string(kMaxSmoothIterations));
-  if (!(c.smooth_settled >= 0 && c.smooth_settled < 1))
-    throw std::invalid_argument(
-        "--smooth-settled must be at least 0 and below 1 (a fraction of an edge)");
   if (s.steps < 1 || s.steps > kMaxSteps)
     throw std::invalid_argument("--steps must be between 1 and " + std::to_string(kMaxSteps));
   if (!(std::isfinite(s.t0) && std::isfinite(s.t1) && s.t0 >= 0 && s.t1 <= 1 && s.t0 <= s.t1))
@@ -250,7 +243,7 @@ ViewerArgs parse_viewer_args(const std::vector<std::string>& args, const ViewerS
     } else if (opt == "--edge-length") {
       s.controls.edge_length = to_number(opt, value());
     } else if (opt == "--max-triangles") {
-      s.controls.max_triangles = to_int(opt, value(), 8, INT32_MAX);
+      s.controls.max_triangles = to_int(opt, value(), kMinTriangleBudget, INT32_MAX);
     } else if (opt == "--seed") {
       s.controls.seed = static_cast<unsigned>(to_int(opt, value(), 0, INT32_MAX));
     } else if (opt == "--play") {

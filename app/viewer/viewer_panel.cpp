@@ -8,6 +8,7 @@
 
 #include "app/render/colorbar_overlay.h"
 #include "app/viewer/formula_panel.h"
+#include "core/adapt/adapt_options_check.h"
 #include "core/surface/scene_registry.h"
 
 namespace dynamesh {
@@ -203,7 +204,7 @@ void adaptation_section(ViewerState& s, PanelActions& a, const PanelInfo& info) 
   c.k = std::max(c.k, 0.0);
   c.smooth_settled = std::clamp(c.smooth_settled, 0.0, 0.99);
   c.edge_length = std::max(c.edge_length, 0.0);
-  c.max_triangles = std::max(c.max_triangles, 8);
+  c.max_triangles = std::max(c.max_triangles, kMinTriangleBudget);
   s.style.colors.threshold = c.threshold;
   // Sliders apply when released; the other fields on Enter (they change only then).
   a.controls_changed |= changed || c.smooth_iterations != before.smooth_iterations ||

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <thread>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "app/viewer/simulation.h"
 #include "app/viewer/viewer_args.h"
 #include "app/viewer/viewer_state.h"
+#include "cli_runner.h"
 #include "test_render_scratch.h"
 #include "test_render_step_request.h"
 #include "xvfb_run.h"
@@ -59,6 +61,27 @@ TEST(ViewerHostile, CommandLineValuesAreCheckedAsTheCliChecksThem) {
   EXPECT_NE(m.find("unknown scene"), std::string::npos);
   EXPECT_LT(m.size(), 200u);  // the name is not echoed whole
   EXPECT_EQ(refusal({"--scene", "sinc", "--density", "500"}), "(accepted)");
+}
+
+// The adaptation's limits are one check (core/adapt/adapt_options_check.h): a value past one
+// gets the same line from the viewer as from dynamesh-cli run, whose binary exits 2 with it.
+TEST(ViewerHostile, AdaptationLimitsGiveTheCliLineWordForWord) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"--threshold", "0"}, {"--epsilon", "-0.001"},   {"--density", "0"},
+      {"--k", "-1"},        {"--smooth-settled", "1"}, {"--smooth-settled", "-0.5"}};
+  for (const std::vector<std::string>& args : cases) {
+    SCOPED_TRACE(args[0] + " " + args[1]);
+    const std::string viewer = refusal(args);
+    EXPECT_EQ(viewer.rfind(args[0] + " must", 0), 0u) << viewer;
+    const test::CliRun cli = test::run_cli(args);
+    EXPECT_EQ(cli.status, 2) << cli.err;
+    EXPECT_EQ(std::count(cli.err.begin(), cli.err.end(), '\n'), 1) << cli.err;
+    EXPECT_NE(cli.err.find(viewer + "\n"), std::string::npos) << cli.err << " vs " << viewer;
+  }
+  // The triangle budget's floor, once the viewer's (8) and the CLI's (2): now 2 in both.
+  EXPECT_EQ(refusal({"--max-triangles", "2"}), "(accepted)");
+  EXPECT_NE(refusal({"--max-triangles", "1"}).find("[2,"), std::string::npos);
+  EXPECT_EQ(test::run_cli({"--max-triangles", "1"}).status, 2);
 }
 
 // A saved state with one bad value: parse_viewer_args over it refuses it (main then starts
