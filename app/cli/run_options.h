@@ -35,9 +35,9 @@ struct RunOptions {
   int export_every = 1;
   int width = 1280, height = 960;
   std::string color = "error";
-  double max_seconds = 0.0;      // 0: no wall-time budget
+  double max_seconds = 0.0;       // 0: no wall-time budget
   double max_memory_mb = 4096.0;  // the budgets' memory estimate must stay below
-  ColorSettings colors;  // --color-range (and the threshold, set once it is known)
+  ColorSettings colors;           // --color-range (and the threshold, set once it is known)
   bool wireframe = true;
   CameraView camera;
   bool quiet = false;

@@ -63,8 +63,8 @@ std::string VideoRecorder::start(const std::string& dir, const std::string& stem
 void VideoRecorder::add_frame(const Image& frame) {
   if (!recording() || frame.width != width_ || frame.height != height_) return;
   if (pipe_ != nullptr) {
-    failed_ = failed_ ||
-              std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), pipe_) != frame.rgba.size();
+    failed_ =
+        failed_ || std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), pipe_) != frame.rgba.size();
   } else {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", frames_);

@@ -118,7 +118,8 @@ std::uint64_t ByteStream::skip(std::uint64_t n) {
   std::array<unsigned char, 1 << 16> buffer;
   std::uint64_t skipped = 0;
   while (skipped < n) {
-    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(n - skipped, buffer.size()));
+    const std::size_t want =
+        static_cast<std::size_t>(std::min<std::uint64_t>(n - skipped, buffer.size()));
     const std::size_t got = read(buffer.data(), want);
     skipped += got;
     if (got < want) break;

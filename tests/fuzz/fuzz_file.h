@@ -13,10 +13,10 @@
 namespace dynamesh::fuzz {
 
 inline std::string input_file(const std::uint8_t* data, std::size_t size, const std::string& ext) {
-  static const std::filesystem::path dir =
-      std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
-  const std::string path =
-      (dir / ("dynamesh_fuzz_" + std::to_string(::getpid()) + ext)).string();
+  static const std::filesystem::path dir = std::filesystem::is_directory("/dev/shm")
+                                               ? "/dev/shm"
+                                               : std::filesystem::temp_directory_path();
+  const std::string path = (dir / ("dynamesh_fuzz_" + std::to_string(::getpid()) + ext)).string();
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return path;

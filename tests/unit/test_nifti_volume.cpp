@@ -345,7 +345,8 @@ TEST(NiftiVolumeHostile, AbsurdSformsAreRefused) {
   expect_sform_error("inf.nii", Mat3::Identity(), Vec3(INFINITY, 0, 0), "non-finite");
   // Two voxel axes 0.1 degrees apart: a flattened sliver, nearly singular.
   Mat3 sliver = Mat3::Identity();
-  sliver.col(1) = Vec3(std::cos(0.1 * std::numbers::pi / 180), std::sin(0.1 * std::numbers::pi / 180), 0);
+  sliver.col(1) =
+      Vec3(std::cos(0.1 * std::numbers::pi / 180), std::sin(0.1 * std::numbers::pi / 180), 0);
   expect_sform_error("sliver.nii", sliver, Vec3::Zero(), "nearly so");
   // A strong but honest shear (45 degrees) is still read.
   Mat3 shear = Mat3::Identity();

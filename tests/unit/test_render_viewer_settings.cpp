@@ -18,7 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 // Sets (or unsets, with nullopt) an environment variable for the scope.
 class ScopedEnv {
  public:

@@ -35,8 +35,8 @@ struct DirectRun {
 
   DirectRun(const SimulationControls& c, double t0) : surface(make_scene(c.scene)) {
     surface->set_time(t0);
-    adapter = std::make_unique<Adapter>(
-        *surface, adapt_options(c), default_criteria(c.scene, 0.0, adapt_options(c), 0.0));
+    adapter = std::make_unique<Adapter>(*surface, adapt_options(c),
+                                        default_criteria(c.scene, 0.0, adapt_options(c), 0.0));
     adapter->initialize();
   }
 };

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "core/surface/finite_differences.h"
 #include "core/surface/expression/formula_checks.h"
 #include "core/surface/expression/periodic_grid_mesh.h"
+#include "core/surface/finite_differences.h"
 
 namespace dynamesh {
 

@@ -212,8 +212,8 @@ TriangleMesh read_ply(const std::string& path) {
   // per value (ascii). A header claiming more is refused at once instead of read to the end.
   for (const PlyElement& e : elements) {
     if (e.properties.empty() && e.count > 0)
-      fail(path, "element '" + e.name + "' has " + std::to_string(e.count) +
-                     " items but no properties");
+      fail(path,
+           "element '" + e.name + "' has " + std::to_string(e.count) + " items but no properties");
     std::uint64_t item = 0;
     for (const PlyProperty& p : e.properties)
       item += format == PlyFormat::kAscii ? 2 : type_size(p.is_list ? p.count_type : p.type);
@@ -276,8 +276,9 @@ TriangleMesh read_ply(const std::string& path) {
   char c = 0;
   while (in.get(c))
     if (format != PlyFormat::kAscii || !std::isspace(static_cast<unsigned char>(c)))
-      fail(path, "data continues after the last element: the header's counts are smaller "
-                 "than the data");
+      fail(path,
+           "data continues after the last element: the header's counts are smaller "
+           "than the data");
   return mesh;
 }
 
