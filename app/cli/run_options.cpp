@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/adapt/adapt_options_check.h"
 #include "core/io/number_text.h"
@@ -20,26 +21,29 @@ std::string format_number(double x) {
   return out.str();
 }
 
+// The option readers both programs share (core/io/number_text.h), refusing as a usage error.
+template <class Read>
+auto read_option(Read read) {
+  try {
+    return read();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 double parse_number(const std::string& option, const std::string& text) {
-  const std::optional<double> value = parse_finite_number(text);
-  if (!value) throw UsageError(option + " expects a number, got '" + text + "'");
-  return *value;
+  return read_option([&] { return option_number(option, text); });
 }
 
 long parse_integer(const std::string& option, const std::string& text) {
-  const std::optional<long long> value =
-      parse_whole_number(text, -9'000'000'000'000'000LL, 9'000'000'000'000'000LL);
-  if (!value) throw UsageError(option + " expects a whole number, got '" + text + "'");
-  return static_cast<long>(*value);
+  return static_cast<long>(read_option([&] {
+    return option_whole_number(option, text, -kLargestWholeNumber, kLargestWholeNumber);
+  }));
 }
 
 // A whole number in [lo, hi]: values beyond an int are refused, never wrapped.
 int parse_int(const std::string& option, const std::string& text, long lo, long hi) {
-  const long value = parse_integer(option, text);
-  if (value < lo || value > hi)
-    throw UsageError(option + " must be between " + std::to_string(lo) + " and " +
-                     std::to_string(hi) + ", got " + text);
-  return static_cast<int>(value);
+  return static_cast<int>(read_option([&] { return option_whole_number(option, text, lo, hi); }));
 }
 
 // Large enough for any real use, small enough that nothing wraps or runs for days.

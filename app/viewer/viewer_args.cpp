@@ -19,20 +19,14 @@ namespace {
 // As dynamesh-cli run's limit (run_options.cpp).
 constexpr int kMaxSteps = 10'000'000;
 
-// The same strict reading as dynamesh-cli run's (core/io/number_text.h).
+// dynamesh-cli run's readers, with its messages (core/io/number_text.h).
 double to_number(const std::string& option, const std::string& text) {
-  const std::optional<double> v = parse_finite_number(text);
-  if (!v) throw std::invalid_argument(option + " expects a number, got '" + text + "'");
-  return *v;
+  return option_number(option, text);
 }
 
 int to_int(const std::string& option, const std::string& text, long long min = INT32_MIN,
            long long max = INT32_MAX) {
-  const std::optional<long long> v = parse_whole_number(text, min, max);
-  if (!v)
-    throw std::invalid_argument(option + " expects a whole number in [" + std::to_string(min) +
-                                ", " + std::to_string(max) + "], got '" + text + "'");
-  return static_cast<int>(*v);
+  return static_cast<int>(option_whole_number(option, text, min, max));
 }
 
 bool finite_in(double v, double lo, double hi) {

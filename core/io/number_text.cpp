@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace dynamesh {
 
@@ -16,11 +17,30 @@ std::optional<double> parse_finite_number(const std::string& text) {
 
 std::optional<long long> parse_whole_number(const std::string& text, long long min, long long max) {
   const std::optional<double> value = parse_finite_number(text);
-  // Beyond 2^53 doubles skip whole numbers; no option needs that much.
-  if (!value || *value != std::floor(*value) || std::abs(*value) > 9e15) return {};
+  if (!value || *value != std::floor(*value) ||
+      std::abs(*value) > static_cast<double>(kLargestWholeNumber))
+    return {};
   const auto n = static_cast<long long>(*value);
   if (n < min || n > max) return {};
   return n;
+}
+
+double option_number(const std::string& option, const std::string& text) {
+  const std::optional<double> value = parse_finite_number(text);
+  if (!value) throw std::invalid_argument(option + " expects a number, got '" + text + "'");
+  return *value;
+}
+
+long long option_whole_number(const std::string& option, const std::string& text, long long min,
+                              long long max) {
+  const std::optional<double> value = parse_finite_number(text);
+  if (!value || *value != std::floor(*value))
+    throw std::invalid_argument(option + " expects a whole number, got '" + text + "'");
+  const std::optional<long long> n = parse_whole_number(text, min, max);
+  if (!n)
+    throw std::invalid_argument(option + " expects a whole number in [" + std::to_string(min) +
+                                ", " + std::to_string(max) + "], got '" + text + "'");
+  return *n;
 }
 
 std::string format_significant(double x, int digits) {

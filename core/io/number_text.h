@@ -12,8 +12,21 @@
 
 namespace dynamesh {
 
+// The largest whole number read: beyond 2^53 (~9.007e15) doubles skip whole numbers, and no
+// option needs that much.
+inline constexpr long long kLargestWholeNumber = 9'000'000'000'000'000LL;
+
 std::optional<double> parse_finite_number(const std::string& text);
 std::optional<long long> parse_whole_number(const std::string& text, long long min, long long max);
+
+// A command-line option's value read as above, or std::invalid_argument with the one line both
+// programs (dynamesh-cli run, the viewer) print for it:
+//   "--k expects a number, got 'x'"
+//   "--steps expects a whole number, got '1.5'"
+//   "--steps expects a whole number in [1, 10000000], got '0'"
+double option_number(const std::string& option, const std::string& text);
+long long option_whole_number(const std::string& option, const std::string& text, long long min,
+                              long long max);
 
 // `x` with `digits` significant digits, in the shortest of fixed and scientific notation (the
 // stream's default): messages stay short for any magnitude, where std::to_string's fixed
