@@ -33,14 +33,13 @@ double option_number(const std::string& option, const std::string& text) {
 
 long long option_whole_number(const std::string& option, const std::string& text, long long min,
                               long long max) {
+  if (const std::optional<long long> n = parse_whole_number(text, min, max)) return *n;
+  // Refused: say whether it is no whole number at all or one out of the range.
   const std::optional<double> value = parse_finite_number(text);
   if (!value || *value != std::floor(*value))
     throw std::invalid_argument(option + " expects a whole number, got '" + text + "'");
-  const std::optional<long long> n = parse_whole_number(text, min, max);
-  if (!n)
-    throw std::invalid_argument(option + " expects a whole number in [" + std::to_string(min) +
-                                ", " + std::to_string(max) + "], got '" + text + "'");
-  return *n;
+  throw std::invalid_argument(option + " expects a whole number in [" + std::to_string(min) + ", " +
+                              std::to_string(max) + "], got '" + text + "'");
 }
 
 std::string format_significant(double x, int digits) {
