@@ -633,15 +633,6 @@ TEST(MriEvents, CliColin27SweptIn8StepsIsEmbeddedAndNotReBased) {
 // the count restarted only where the error doubles, at 21,512, 15,630, 16,276 and 13,416 (14-36
 // s). Seed 4, the quickest: the peak stays below the 20,000 triangles the watched sweep in 8
 // steps is held to (below), and the error the mesh cannot meet is reported, not hidden.
-// The peak is chaotic in the engine's last bits, not only in the seed. Seeds 1-8 (session 31):
-//   that code:                     21,512 15,630 16,276 13,416 15,946 12,708 18,158 13,624
-//   it with tolerance 0.9e-10:     12,778 32,198 32,074 12,478 45,292 11,940 14,990 13,936
-//   moves from landings (now):     19,876 25,254 17,508 16,476 11,616 20,398 31,684 19,618
-// (the projection's tolerance, ProjectionOptions; the smoothing's moves started from their
-// second-order landing points, SmoothingOptions::evaluations). What holds for every seed is what
-// this test asserts besides the peak: bounded (no budget hit), and the error reported. A change
-// that moves vertices by rounding can move seed 4 across 20,000 without changing what the hold
-// does.
 TEST(MriEvents, CliColin27UnwatchedSweepIsBoundedByTheHold) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
   const test::CliRun run =
