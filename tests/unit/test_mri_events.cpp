@@ -631,8 +631,11 @@ TEST(MriEvents, CliColin27SweptIn8StepsIsEmbeddedAndNotReBased) {
 // count restarted at every new maximum of the gap faces' readings (before session 29) the
 // sweep ended at 36,482, 238,682, 68,618 and 68,140 triangles with seeds 1-4 (30-121 s); with
 // the count restarted only where the error doubles, at 21,512, 15,630, 16,276 and 13,416 (14-36
-// s). Seed 4, the quickest: the peak stays below the 20,000 triangles the watched sweep in 8
-// steps is held to (below), and the error the mesh cannot meet is reported, not hidden.
+// s). Those peaks were chaotic in the last bits (the projection's tolerance at 0.9e-10 alone:
+// 11,940-45,292 over seeds 1-8). Since split vertices go down their diamond's normal line only
+// to where their faces face up, not to F's far sheets (SurfaceProbe::project_split_vertex,
+// session 32), seeds 1-8 peak at 11,048-11,240 at either tolerance. Seed 4: the peak stays
+// below 12,500, and the error the mesh cannot meet is reported, not hidden.
 TEST(MriEvents, CliColin27UnwatchedSweepIsBoundedByTheHold) {
   if (!std::filesystem::exists(kDefaultMriVolume)) GTEST_SKIP() << "mricron-data not installed";
   const test::CliRun run =
@@ -641,7 +644,7 @@ TEST(MriEvents, CliColin27UnwatchedSweepIsBoundedByTheHold) {
   ASSERT_EQ(run.status, 0) << run.err;
   ASSERT_TRUE(run.json.is_object()) << run.out;
   EXPECT_FALSE(run.json["budget_hit"].get<bool>()) << run.err;
-  EXPECT_LT(run["peak_triangles"], 20000) << run.err;
+  EXPECT_LT(run["peak_triangles"], 12500) << run.err;
   EXPECT_GT(run["worst_max_sample_error"], 0.5 + 0.125) << run.err;
 }
 
