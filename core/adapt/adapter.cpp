@@ -510,12 +510,13 @@ void Adapter::normal_correction() {
   const bool planned = starts_planned_ && projection_starts_.size() >= mesh_.vertex_capacity();
   starts_planned_ = false;
   std::size_t failures = 0;
-  // Implicit, predictive sampling: F and grad F where each vertex lands are kept for the
-  // predictor (begin_step).
+  // Implicit: F and grad F where each vertex lands are kept (ErrorPredictor::note) for the
+  // smoothing's moves in both sampling modes (tangential_correction: the modes must place the
+  // vertices alike) and, predictive, for the predictor (begin_step).
   const auto* implicit =
       probe_.parametric() ? nullptr : &static_cast<const ImplicitSurface&>(surface_);
   const bool keep = implicit && options_.sampling == Sampling::kPredictive;
-  if (keep) predictor_.grow_for(mesh_);
+  if (implicit) predictor_.grow_for(mesh_);
   // One sub-step only: the slide is measured over the whole step (ErrorPredictor::begin_step).
   carried_from_rest_ = carry;
   carried_valid_ = keep && carry && stats_.substeps <= 1;
@@ -541,7 +542,7 @@ void Adapter::normal_correction() {
                                        : project_to_surface(*implicit, mesh_.position(v));
     mesh_.position(v) = r.point;
     if (!r.converged) ++failures;
-    if (keep) predictor_.note(v, r.point, r.value, r.gradient, surface_epoch_);
+    predictor_.note(v, r.point, r.value, r.gradient, surface_epoch_);
   }
   tracker_->projection_failures += failures;
 }
@@ -560,10 +561,17 @@ void Adapter::tangential_correction() {
   // reads it instead of mapping the vertex back.
   if (carried_from_rest_) smoothing.rest_points = &rest_points_;
   carried_from_rest_ = false;
+  // Where the normal correction left each vertex, F and grad F (normal_correction): the moves
+  // start from their second-order landing points.
+  if (!probe_.parametric()) {
+    smoothing.evaluations = &predictor_.evaluations();
+    smoothing.evaluations_epoch = surface_epoch_;
+  }
   const SmoothingResult r = smooth_tangentially(mesh_, surface_, smoothing, &smoothing_workspace_);
   tracker_->projection_failures += r.projection_failures;
-  if (!probe_.parametric() && options_.sampling == Sampling::kPredictive) {
-    // Where the smoothing moved a vertex, its projection's F and grad F (ErrorPredictor::note).
+  if (!probe_.parametric()) {
+    // Where the smoothing moved a vertex, its projection's F and grad F (ErrorPredictor::note):
+    // in both modes, as normal_correction keeps them (a relaxation round's moves start there).
     predictor_.grow_for(mesh_);
     const auto n = static_cast<std::int64_t>(mesh_.vertex_capacity());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)

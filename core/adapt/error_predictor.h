@@ -146,6 +146,9 @@ class ErrorPredictor final : public MeshListener {
     evaluated_[v.idx] = PointEvaluation{point, value, gradient, epoch};
   }
   void grow_for(const Mesh48& mesh) { grow(mesh); }
+  // What note() kept, by vertex id (the smoothing starts its moves from them too:
+  // SmoothingOptions::evaluations).
+  const std::vector<PointEvaluation>& evaluations() const { return evaluated_; }
 
   // Whether some criterion would split face f at an error. `asks` is called only above
   // `floor`, an error at or below which none would (Adapter::split_error_floor): most skipped

@@ -1,5 +1,6 @@
 #include "core/geometry/surface_move.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/surface/projection.h"
@@ -30,8 +31,9 @@ bool parametric_move(const ParametricSurface& s, const Mesh48& mesh, Vertex v, c
 }
 
 bool implicit_move(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const Vec3& move,
-                   Vec3& position, std::size_t& failures, double* value, Vec3* gradient) {
-  const ProjectionResult r = project_to_surface(s, mesh.position(v) + move);
+                   Vec3& position, std::size_t& failures, double* value, Vec3* gradient,
+                   const Vec3* start) {
+  const ProjectionResult r = project_to_surface(s, start ? *start : mesh.position(v) + move);
   if (!r.converged) {
     ++failures;
     return false;
@@ -40,6 +42,29 @@ bool implicit_move(const ImplicitSurface& s, const Mesh48& mesh, Vertex v, const
   if (value) *value = r.value;
   if (gradient) *gradient = r.gradient;
   return true;
+}
+
+namespace {
+// second_order_landing's model holds for |k| |move| and the move's normal part (relative)
+// below this: the landing is then within 0.15 |move| of p + move.
+constexpr double kModelReach = 0.1;
+}  // namespace
+
+Vec3 second_order_landing(const PointEvaluation& at_p, const PrincipalCurvatures& k,
+                          const Vec3& move) {
+  const Vec3 straight = at_p.point + move;
+  const double gnorm = at_p.gradient.norm();
+  if (!(gnorm > 0.0)) return straight;
+  const double length = move.norm();
+  const double first = -(at_p.value + at_p.gradient.dot(move)) / gnorm;
+  // The model is trusted only for a move short against the curvature radius and nearly
+  // tangential: elsewhere (a distance field's kinks, sheets about to touch) the plain start is
+  // no worse, and a long correction could reach across to another sheet.
+  const double kmax = std::max(std::abs(k.k1), std::abs(k.k2));
+  if (!(kmax * length <= kModelReach && std::abs(first) <= kModelReach * length)) return straight;
+  const double a = move.dot(k.dir1), b = move.dot(k.dir2);
+  const double h = first - 0.5 * (k.k1 * a * a + k.k2 * b * b);
+  return straight + (h / gnorm) * at_p.gradient;
 }
 
 Vec3 surface_normal_at(const Surface& s, const Mesh48& mesh, Vertex v) {

@@ -409,6 +409,9 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
   // it (Surface::invariant_axis).
   const Vec3 axis = imp ? imp->invariant_axis() : Vec3::Zero();
   const double settled2 = o.settled_offset * o.settled_offset;
+  // (A vertex's entry in o.evaluations, if any: checked against its place and the epoch.)
+  const bool known =
+      imp && o.evaluations && o.evaluations_epoch != 0 && o.evaluations->size() >= cap;
   std::size_t failures = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : failures) if (n > kParallelMin)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -423,9 +426,15 @@ SmoothingResult smooth_once(Mesh48& mesh, const Surface& surface, const Smoothin
     if (d.squaredNorm() < settled2 * (w.mean_edge[k] * w.mean_edge[k])) continue;
     Vec3 move = equation1_move(w.frame[k], d, o, weights);
     move -= move.dot(axis) * axis;
+    Vec3 landing;
+    const PointEvaluation* at_p = known ? &(*o.evaluations)[k] : nullptr;
+    const bool from_landing =
+        at_p && at_p->epoch == o.evaluations_epoch && at_p->point == mesh.position(v);
+    if (from_landing) landing = second_order_landing(*at_p, w.frame[k].k, move);
     const bool ok = par ? parametric_move(*par, mesh, v, move, w.uv[k], w.position[k])
                         : !w.boundary[k] && implicit_move(*imp, mesh, v, move, w.position[k],
-                                                          failures, &w.value[k], &w.gradient[k]);
+                                                          failures, &w.value[k], &w.gradient[k],
+                                                          from_landing ? &landing : nullptr);
     w.moved[k] = ok ? 1 : 0;
   }
   SmoothingResult r;

@@ -25,6 +25,7 @@
 #include <memory>
 
 #include "core/mesh/mesh48.h"
+#include "core/surface/projection.h"
 #include "core/surface/surface.h"
 
 namespace dynamesh {
@@ -58,6 +59,15 @@ struct SmoothingOptions {
   // an edge). Frame reuse then reads it instead of mapping every vertex back (a bend map's
   // atan2 and square root per vertex). Null: mapped back.
   const std::vector<Vec3>* rest_points = nullptr;
+  // Implicit surfaces: F and grad F already evaluated where the vertices are, on the surface as
+  // it is now, where the caller knows them (by vertex id; an entry counts where its point is
+  // the vertex's position and its epoch is `evaluations_epoch`): the adapter's normal
+  // correction leaves them. Such a vertex's move is projected from its second-order landing
+  // point (second_order_landing, surface_move.h): one evaluation where the move from p + move
+  // took a Newton step and two (1.76 a move at 10^6 triangles, capsule-bend). Null: from
+  // p + move. Either way the vertex lands on S within the projection's tolerance.
+  const std::vector<PointEvaluation>* evaluations = nullptr;
+  std::uint64_t evaluations_epoch = 0;
 };
 
 struct SmoothingResult {

@@ -39,9 +39,9 @@
 #include "core/adapt/adapter.h"
 #include "core/mesh/spatial_order.h"
 #include "core/surface/scene_registry.h"
-#include "counting_surface.h"
 #include "median.h"
 #include "process_cpu_time.h"
+#include "tests/support/counting_surface.h"
 
 namespace dynamesh {
 namespace {

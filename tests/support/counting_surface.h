@@ -2,7 +2,8 @@
 // the evaluations the adapter asks of it, by kind. For benchmarks that ask how much of a step
 // is evaluating the surface (bench_million.cpp): the counts come from a run through this
 // wrapper, the cost of each kind from timing the wrapped surface alone, so the atomic counters
-// never enter a timing. Forwarding changes no result: every value is the wrapped surface's.
+// never enter a timing. Tests count with it what an algorithm claims to save
+// (test_surface_move.cpp). Forwarding changes no result: every value is the wrapped surface's.
 #pragma once
 
 #include <array>
