@@ -47,7 +47,6 @@ int parse_int(const std::string& option, const std::string& text, long lo, long 
 }
 
 // Large enough for any real use, small enough that nothing wraps or runs for days.
-constexpr long kMaxSteps = 10'000'000;
 constexpr long kMaxImageSide = 16384;
 
 using Setter =

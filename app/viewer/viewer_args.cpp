@@ -16,9 +16,6 @@
 namespace dynamesh {
 namespace {
 
-// As dynamesh-cli run's limit (run_options.cpp).
-constexpr int kMaxSteps = 10'000'000;
-
 // dynamesh-cli run's readers, with its messages (core/io/number_text.h).
 double to_number(const std::string& option, const std::string& text) {
   return option_number(option, text);

@@ -12,6 +12,9 @@ namespace dynamesh {
 
 // The most smoothing iterations a step may be asked for (Equation 1 applied this many times).
 inline constexpr int kMaxSmoothIterations = 1000;
+// The most steps a run (dynamesh-cli run --steps, the viewer's --steps and --frames) may be
+// asked for: large enough for any real use, small enough that nothing wraps or runs for days.
+inline constexpr int kMaxSteps = 10'000'000;
 // The smallest triangle budget (AdaptOptions::max_triangles) a user may set.
 inline constexpr int kMinTriangleBudget = 2;
 
