@@ -49,7 +49,8 @@ class SurfaceProbe {
   // project_vertex for a vertex a split just created. Implicit: when Newton from the edge's
   // midpoint slides mostly sideways (the edge bridges a crease or a sulcus and the nearest
   // point is on a wall), the vertex goes instead to the nearest zero of F along the
-  // diamond's normal, down into the crease. Without this a bridging edge never gets shorter
+  // diamond's normal where the new faces face up grad F, down into the crease (not to F's far
+  // sheet, which that line can meet first). Without this a bridging edge never gets shorter
   // than the gap it spans and the split queue grows without end.
   // With the fold guard on (the rest of a step in which the mesh's topology was repaired, issue
   // 16), a place that turns one of the new faces against grad F is passed over for the next,
