@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/geometry/fold_repair.h"
 #include "core/surface/projection.h"
 #include "core/surface/surface_distance.h"
 
@@ -65,20 +66,12 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
     normal += (pa - apex).cross(pb - apex);
   }
   // Whether the vertex at p leaves the split's new faces facing up grad F at their corners
-  // (find_bad_faces' test, fold_repair.h).
+  // (the fold screen's own test).
   const auto keeps_faces_up = [&](const Vec3& p) {
     mesh.position(change.vertex) = p;
     for (int h = 0; h < change.count; ++h)
-      for (const Face f : change.halves[h].children) {
-        const auto v = mesh.vertices(f);
-        const Vec3 &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
-        const Vec3 normal = (b - a).cross(c - a);
-        for (const Vec3* corner : {&a, &b, &c}) {
-          Vec3 g;
-          implicit_->value_gradient(*corner, g);
-          if (!(normal.dot(g) > 0)) return false;
-        }
-      }
+      for (const Face f : change.halves[h].children)
+        if (folded_against_surface(mesh, *implicit_, f)) return false;
     return true;
   };
   const Vec3 d = newton.point - m;
