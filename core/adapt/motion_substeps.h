@@ -3,7 +3,7 @@
 // frame, whatever the step size).
 //
 // Each vertex's predicted displacement d over the step comes from the surface (SurfaceProbe::
-// predicted_motion): parametric S(u, v, t1) - p; carried along a rest map; otherwise the
+// predicted_motion_from): parametric S(u, v, t1) - p; carried along a rest map; otherwise the
 // normal velocity v = -F grad F / |grad F|^2 integrated over the step. The bound is the
 // largest edge strain |d_a - d_b| / |a - b|: how far an edge turns or stretches in one go,
 // relative to its length. A rigid motion gives 0, so a translating or rotating surface costs
@@ -40,7 +40,7 @@ MotionEstimate estimate_substeps(const Mesh48& mesh, const std::vector<Vec3>& di
 // Fills `displacement` with every live vertex's predicted motion to the surface's current
 // time (rest_points: recorded before the time changed, for surfaces that follow the material;
 // else null), in parallel. `starts` (may be null; implicit surfaces): each vertex's
-// SurfaceProbe::predicted_motion start, for the projection that follows at the same time.
+// SurfaceProbe::predicted_motion_from start, for the projection that follows at the same time.
 void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
                            const std::vector<Vec3>* rest_points, std::vector<Vec3>& displacement,
                            std::vector<ProjectionStart>* starts = nullptr);

@@ -119,11 +119,10 @@ bool SurfaceProbe::project_split_vertex(Mesh48& mesh, const DiamondChange& chang
   return newton.converged;
 }
 
-Vec3 SurfaceProbe::predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest,
-                                    ProjectionStart* start) const {
+Vec3 SurfaceProbe::predicted_motion_from(const Mesh48& mesh, Vertex v, const Vec3& x,
+                                         ProjectionStart* start) const {
   const Vec3& p = mesh.position(v);
-  if (parametric_) return parametric_->position(mesh.uv(v)) - p;
-  const Vec3 x = rest && follows_material() ? implicit_->from_rest(*rest) : p;
+  if (parametric_) return x - p;
   Vec3 g;
   const double f = implicit_->value_gradient(x, g);
   if (start) *start = ProjectionStart{x, f, g};

@@ -33,16 +33,23 @@ class SurfaceProbe {
     mesh.position(v) = implicit_->from_rest(rest);
   }
   // How far v must move to reach the surface at its current time, to first order (the
-  // motion sub-stepping plans with, motion_substeps.h): parametric S(u, v) - p; along the rest
-  // map from `rest` (recorded before the time changed; null: none) and then one Newton step;
-  // otherwise one Newton step -F grad F / |grad F|^2, the normal velocity
-  // v = -F_t grad F / |grad F|^2 integrated over the step (F(p) was 0 before it).
-  // `start` (implicit only; may be null) receives the point the prediction started from and
-  // F, grad F there: the adapter's normal correction continues Newton from it when the
-  // surface's time has not changed since (one evaluation per vertex less in a step without
+  // motion sub-stepping plans with, motion_substeps.h), in two halves so that a caller can
+  // carry many vertices before it evaluates at any of them (predict_displacements).
+  // prediction_from(): where the prediction starts: parametric S(u, v) itself; along the rest
+  // map from `rest` (recorded before the time changed; null: none); otherwise p.
+  // predicted_motion_from(): the motion from there: parametric S(u, v) - p; otherwise one
+  // Newton step from it, -F grad F / |grad F|^2 (without a rest map: the normal velocity
+  // v = -F_t grad F / |grad F|^2 integrated over the step, F(p) being 0 before it), added to
+  // the carry. `start` (implicit only; may be null) receives the point the prediction started
+  // from and F, grad F there: the adapter's normal correction continues Newton from it when
+  // the surface's time has not changed since (one evaluation per vertex less in a step without
   // sub-steps).
-  Vec3 predicted_motion(const Mesh48& mesh, Vertex v, const Vec3* rest,
-                        ProjectionStart* start = nullptr) const;
+  Vec3 prediction_from(const Mesh48& mesh, Vertex v, const Vec3* rest) const {
+    if (parametric_) return parametric_->position(mesh.uv(v));
+    return rest && follows_material() ? implicit_->from_rest(*rest) : mesh.position(v);
+  }
+  Vec3 predicted_motion_from(const Mesh48& mesh, Vertex v, const Vec3& from,
+                             ProjectionStart* start = nullptr) const;
   // Sets a split-born vertex's parameters to its parent edge's midpoint (continuous across a
   // periodic seam); call before project_vertex.
   void place_split_vertex(Mesh48& mesh, const DiamondChange& change) const;
