@@ -14,7 +14,7 @@ void predict_displacements(const Mesh48& mesh, const SurfaceProbe& probe,
   const auto n = static_cast<std::int64_t>(mesh.vertex_capacity());
   displacement.resize(static_cast<std::size_t>(n));
   if (starts) starts->resize(static_cast<std::size_t>(n));
-  // A block's vertices are all carried (capsule-bend: a sine and a cosine each) before any is
+  // A block's vertices are all carried (capsule-bend: three sines and cosines each) before any is
   // evaluated: the block's evaluations then follow one another with nothing between them, and
   // the processor overlaps them. Vertex by vertex, each evaluation waited for its own carry.
   // The same numbers, and on one thread (capsule-bend, the two loops alternating in one
